@@ -1,0 +1,100 @@
+"""The ``artiplan`` command: one entry point, one sub-command per pipeline stage.
+
+Each sub-command lives in ``artiplan.commands.<module>`` and exposes two functions:
+``add_arguments(parser)`` and ``run(args) -> int``. Modules are imported only when their command
+runs, so ``artiplan --help`` is fast and a broken optional dependency breaks only its command.
+Exit codes: :class:`artiplan.errors.ExitCode` (shared/docs/conventions.md).
+"""
+
+from __future__ import annotations
+
+import argparse
+import importlib
+import sys
+import traceback
+from collections.abc import Sequence
+
+from artiplan import __version__
+from artiplan.errors import ArtiplanError, ExitCode
+
+#: name -> (module under artiplan.commands, one-line help). Order = the pipeline.
+COMMANDS: dict[str, tuple[str, str]] = {
+    "generate": ("generate", "write one PDDL+ domain and problem from options or JSON configurations"),
+    "suite": ("suite", "write the paper's 240-problem benchmark suite"),
+    "draw": ("draw", "draw a configuration in 3D (PNG), with an optional target ghost"),
+    "parse": ("parse", "parse a PDDL+ domain (and problem), report warnings, print it back"),
+    "ground": ("ground", "ground a PDDL+ problem and report counts and time"),
+    "plan": ("plan", "plan with artiplan's exact-time PDDL+ planner (or --planner enhsp|kairos)"),
+    "validate": ("validate", "validate a plan with VAL's semantics"),
+    "simulate": ("simulate", "simulate a plan: trajectory CSV and a plot of the angles"),
+    "bench": ("bench", "run planners on a suite; results as JSON Lines, resumable"),
+    "report": ("report", "Table 1, PAR10 and cactus plots from benchmark results"),
+    "world": ("world", "the simulated MuJoCo world: snapshots, camera images"),
+    "demo": ("demo", "the main job on built-in defaults"),
+    "fidelity": ("fidelity", "measure each gravity model's prediction error against physics"),
+}
+
+REPORT_URL = "the project's issue tracker (include the command line and the traceback above)"
+
+
+def build_parser() -> tuple[argparse.ArgumentParser, dict[str, argparse.ArgumentParser]]:
+    parser = argparse.ArgumentParser(
+        prog="artiplan",
+        description="Plan and execute the reshaping of articulated objects with PDDL+ and gravity.",
+    )
+    parser.add_argument("--version", action="version", version=f"artiplan {__version__}")
+    sub = parser.add_subparsers(dest="command", metavar="COMMAND")
+    subparsers = {}
+    for name, (_module, help_text) in COMMANDS.items():
+        subparsers[name] = sub.add_parser(name, help=help_text, description=help_text)
+    return parser, subparsers
+
+
+def _load(name: str) -> object | None:
+    module_name, _ = COMMANDS[name]
+    try:
+        return importlib.import_module(f"artiplan.commands.{module_name}")
+    except ModuleNotFoundError as exc:
+        if exc.name == f"artiplan.commands.{module_name}":
+            return None
+        raise
+
+
+def main(argv: Sequence[str] | None = None) -> int:
+    """Run the command line; returns the exit code (also used by ``python -m artiplan``)."""
+    argv = list(sys.argv[1:] if argv is None else argv)
+    parser, subparsers = build_parser()
+    # Find the sub-command first so only its module is imported.
+    name = next((a for a in argv if not a.startswith("-")), None)
+    if name in COMMANDS:
+        module = _load(name)
+        if module is None:
+            print(f"artiplan: command {name!r} is not available in this version", file=sys.stderr)
+            return int(ExitCode.USAGE)
+        module.add_arguments(subparsers[name])  # type: ignore[attr-defined]
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # argparse: --help gives 0, bad options 2
+        return int(exc.code or 0)
+    if args.command is None:
+        parser.print_help()
+        return int(ExitCode.USAGE)
+    try:
+        return int(module.run(args))  # type: ignore[attr-defined,union-attr]
+    except ArtiplanError as exc:
+        print(f"artiplan {args.command}: error: {exc}", file=sys.stderr)
+        return int(exc.exit_code)
+    except KeyboardInterrupt:
+        print(f"artiplan {args.command}: interrupted", file=sys.stderr)
+        return 130
+    except Exception:
+        traceback.print_exc()
+        print(
+            f"artiplan {args.command}: internal error (a bug). Please report it to {REPORT_URL}.",
+            file=sys.stderr,
+        )
+        return int(ExitCode.INTERNAL)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,1 @@
+"""Sub-commands of the ``artiplan`` CLI, one module each: ``add_arguments(p)`` and ``run(args)``."""
