@@ -19,7 +19,7 @@ from artiplan.errors import ArtiplanError, ExitCode
 
 #: name -> (module under artiplan.commands, one-line help). Order = the pipeline.
 COMMANDS: dict[str, tuple[str, str]] = {
-    "generate": ("generate", "write one PDDL+ domain and problem from options or JSON configurations"),
+    "generate": ("generate", "write one PDDL+ domain and problem from options or configurations"),
     "suite": ("suite", "write the paper's 240-problem benchmark suite"),
     "draw": ("draw", "draw a configuration in 3D (PNG), with an optional target ghost"),
     "parse": ("parse", "parse a PDDL+ domain (and problem), report warnings, print it back"),
@@ -80,7 +80,7 @@ def main(argv: Sequence[str] | None = None) -> int:
         parser.print_help()
         return int(ExitCode.USAGE)
     try:
-        return int(module.run(args))  # type: ignore[attr-defined,union-attr]
+        return int(module.run(args))  # type: ignore[attr-defined]
     except ArtiplanError as exc:
         print(f"artiplan {args.command}: error: {exc}", file=sys.stderr)
         return int(exc.exit_code)

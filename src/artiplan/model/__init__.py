@@ -7,7 +7,7 @@ from artiplan.model.kinematics import (
     direction_error,
     forward_kinematics,
 )
-from artiplan.model.obj import PLANES, VERTICAL_PLANE, HORIZONTAL_PLANE, ArticulatedObject
+from artiplan.model.obj import HORIZONTAL_PLANE, PLANES, VERTICAL_PLANE, ArticulatedObject
 
 __all__ = [
     "HORIZONTAL_PLANE",

@@ -59,7 +59,9 @@ class Configuration:
             return self.theta[link_index - 1]
         if plane == VERTICAL_PLANE:
             return self.gamma[link_index - 1]
-        raise ValueError(f"unknown plane {plane!r}; valid planes: {HORIZONTAL_PLANE}, {VERTICAL_PLANE}")
+        raise ValueError(
+            f"unknown plane {plane!r}; valid planes: {HORIZONTAL_PLANE}, {VERTICAL_PLANE}"
+        )
 
     def with_angle(self, link_index: int, plane: str, value: float) -> Configuration:
         """A copy with one angle replaced."""

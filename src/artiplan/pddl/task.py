@@ -15,7 +15,7 @@ extend it by adding fields with defaults, never by renaming.
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from typing import Literal, Union
+from typing import Literal
 
 # --------------------------------------------------------------------------- numeric expressions
 
@@ -50,7 +50,7 @@ class Neg:
     operand: NumExpr
 
 
-NumExpr = Union[Const, FluentRef, BinOp, Neg]
+NumExpr = Const | FluentRef | BinOp | Neg
 
 # ----------------------------------------------------------------------------------- conditions
 
@@ -99,7 +99,7 @@ class Truth:
 TRUE = Truth(True)
 FALSE = Truth(False)
 
-Condition = Union[Atom, Not, And, Or, Comparison, Truth]
+Condition = Atom | Not | And | Or | Comparison | Truth
 
 # -------------------------------------------------------------------------------------- effects
 
