@@ -1,0 +1,294 @@
+"""PDDL+ domains for the three gravity models (NG, UCM, UACM), generated from options.
+
+The constructs and their names are the paper's (start-/stop-increase, move-, propagate-,
+back-to-zero/back-to-360, gravity-increase/-decrease, ...). Where the generated text departs
+from the published models it is for correctness under VAL's semantics (shared/docs/stack.md);
+each departure is marked ``DEPARTURE`` below and explained in docs/encodings.md:
+
+1. Wrap-around: ``back-to-zero`` fires at ``>= 360`` and *subtracts* 360 (lands on 0);
+   ``back-to-360`` fires at ``<= -0.01`` and adds 360 (lands on 359.99). No event lands within
+   VAL's comparison slack (1e-4) of another event's boundary, so wraps never bounce; angles live
+   in [-0.01, 360). Subtracting instead of assigning also keeps an overshoot (a fixed-step
+   planner jumps past 360) instead of discarding it.
+2. Processes have only continuous effects (VAL rejects Booleans in processes): "gravity acts on
+   l" is derived from the state. ``(link-index ?l)`` is static; ``(held-index)`` is the index of
+   the link being rotated (1 when the hands are free: L1 is always clamped). A link feels
+   gravity when its index exceeds ``held-index`` (it is not held and no held link is tip-ward of
+   it). The comparison is against ``held-index + 0.5`` so that VAL's slack on strict
+   comparisons can never make equal integers compare greater.
+3. UACM: the per-link speed ``gravity-speed`` is switched by events with Boolean flags
+   (``decreasing-angle-gravity``/``increasing-angle-gravity``) instead of a reset event on
+   ``(> speed 0)``, which is not self-falsifying under VAL's slack. Start and stop thresholds
+   are 0.01 deg apart (hysteresis) so a stop event never re-enables its start event.
+4. ``observe``: a no-effect action, so a plan can end when a process completes the goal.
+"""
+
+from __future__ import annotations
+
+from artiplan.encoding.goals import fmt_number
+from artiplan.encoding.options import EncodingOptions
+from artiplan.model import ArticulatedObject
+
+#: Margin [deg] of the wrap-around below 0 and of UACM's start/stop hysteresis. It must exceed
+#: twice VAL's comparison slack (1e-4) by far, and be negligible next to a goal tolerance.
+WRAP_MARGIN = 0.01
+
+
+def domain_name(options: EncodingOptions) -> str:
+    """The domain's name: ``artiplan-ng``, ``artiplan-ucm`` or ``artiplan-uacm``."""
+    return f"artiplan-{options.model}"
+
+
+def _header(options: EncodingOptions) -> str:
+    planes = " ".join(options.planes)
+    functions = ["(angle ?l - link ?p - plane)", "(speed-i)", "(speed-d)"]
+    predicates = [
+        "(in-use)",
+        "(free-to-move ?l - link)",
+        "(connected ?l1 - link ?l2 - link)",
+        "(affects ?l1 - link ?l2 - link)",
+        "(increasing-angle-robot ?l - link ?p - plane)",
+        "(decreasing-angle-robot ?l - link ?p - plane)",
+    ]
+    if options.has_gravity:
+        functions += ["(link-index ?l - link)", "(held-index)"]
+    if options.model == "ucm":
+        functions.append("(speed-g)")
+    if options.model == "uacm":
+        functions += ["(acceleration)", "(gravity-speed ?l - link)"]
+        predicates += [
+            "(increasing-angle-gravity ?l - link)",
+            "(decreasing-angle-gravity ?l - link)",
+        ]
+    if options.reach_time is not None:
+        functions += ["(reach-time)", "(reach-clock)"]
+        predicates.append("(reaching)")
+    pred_text = "\n    ".join(predicates)
+    func_text = "\n    ".join(functions)
+    return f"""(define (domain {domain_name(options)})
+  (:requirements :strips :typing :negative-preconditions :disjunctive-preconditions
+    :numeric-fluents :time)
+  (:types link plane)
+  (:constants {planes} - plane)
+  (:predicates
+    {pred_text})
+  (:functions
+    {func_text})
+"""
+
+
+def _robot(options: EncodingOptions, sign: str) -> str:
+    """start-/stop-, move- and propagate- for one direction (``increase`` or ``decrease``)."""
+    flag = f"{sign}ing-angle-robot".replace("eing", "ing")
+    speed = "(speed-i)" if sign == "increase" else "(speed-d)"
+    held_start = "\n      (assign (held-index) (link-index ?l2))" if options.has_gravity else ""
+    held_stop = "\n      (assign (held-index) 1)" if options.has_gravity else ""
+    timed = options.reach_time is not None
+    ready = "\n      (not (reaching))" if timed else ""
+    reach = "\n      (reaching)\n      (assign (reach-clock) 0)" if timed else ""
+    return f"""
+  ;; The robot holds ?l1 with one hand and rotates its tip-ward neighbour ?l2 on ?p.
+  (:action start-{sign}
+    :parameters (?l1 - link ?l2 - link ?p - plane)
+    :precondition (and
+      (connected ?l1 ?l2)
+      (not (in-use)){ready})
+    :effect (and
+      (in-use)
+      (not (free-to-move ?l1))
+      (not (free-to-move ?l2))
+      ({flag} ?l2 ?p){held_start}))
+
+  (:action stop-{sign}
+    :parameters (?l1 - link ?l2 - link ?p - plane)
+    :precondition (and
+      (connected ?l1 ?l2)
+      ({flag} ?l2 ?p))
+    :effect (and
+      (not (in-use))
+      (free-to-move ?l1)
+      (free-to-move ?l2)
+      (not ({flag} ?l2 ?p)){held_stop}{reach}))
+
+  (:process move-{sign}
+    :parameters (?l - link ?p - plane)
+    :precondition ({flag} ?l ?p)
+    :effect ({sign} (angle ?l ?p) (* #t {speed})))
+
+  ;; The rotation carries every link tip-ward of ?l1 (absolute angles move together).
+  (:process propagate-{sign}
+    :parameters (?l1 - link ?l2 - link ?p - plane)
+    :precondition (and
+      ({flag} ?l1 ?p)
+      (affects ?l1 ?l2))
+    :effect ({sign} (angle ?l2 ?p) (* #t {speed})))
+"""
+
+
+def _wrap_events() -> str:
+    m = fmt_number(WRAP_MARGIN)
+    return f"""
+  ;; DEPARTURE (VAL): subtract 360 rather than assign, and wrap below 0 only at -{m}, so that
+  ;; no wrap lands within VAL's comparison slack of the other's boundary. Angles: [-{m}, 360).
+  (:event back-to-zero
+    :parameters (?l - link ?p - plane)
+    :precondition (>= (angle ?l ?p) 360)
+    :effect (decrease (angle ?l ?p) 360))
+
+  (:event back-to-360
+    :parameters (?l - link ?p - plane)
+    :precondition (<= (angle ?l ?p) -{m})
+    :effect (increase (angle ?l ?p) 360))
+"""
+
+
+def _feels(var: str) -> str:
+    """Condition: gravity can act on link ``var`` (not held, no held link tip-ward of it)."""
+    return f"(> (link-index {var}) (+ (held-index) 0.5))"
+
+
+def _ucm(options: EncodingOptions) -> str:
+    g = options.gravity_plane
+    blocks = []
+    for sign, lo, hi in (("decrease", "0", "180"), ("increase", "180", "360")):
+        rng = f"(> (angle ?l {g}) {lo})\n      (< (angle ?l {g}) {hi})"
+        rng1 = rng.replace("?l ", "?l1 ")
+        blocks.append(f"""
+  ;; Gravity pulls ?l toward rest (0 == 360) at constant speed; it stops at rest, and exactly
+  ;; 180 stays. DEPARTURE (VAL): "feels gravity" is derived from the state, no Boolean effect.
+  (:process gravity-{sign}
+    :parameters (?l - link)
+    :precondition (and
+      {_feels("?l")}
+      {rng})
+    :effect ({sign} (angle ?l {g}) (* #t (speed-g))))
+
+  (:process propagate-gravity-{sign}
+    :parameters (?l1 - link ?l2 - link)
+    :precondition (and
+      (affects ?l1 ?l2)
+      {_feels("?l1")}
+      {rng1})
+    :effect ({sign} (angle ?l2 {g}) (* #t (speed-g))))
+""")
+    return "".join(blocks)
+
+
+def _uacm_events(options: EncodingOptions, sign: str) -> str:
+    g = options.gravity_plane
+    flag = f"{sign}ing-angle-gravity".replace("eing", "ing")
+    other = "increasing-angle-gravity" if sign == "decrease" else "decreasing-angle-gravity"
+    m = fmt_number(WRAP_MARGIN)
+    if sign == "decrease":
+        below = fmt_number(180 - WRAP_MARGIN)
+        start_range = f"(> (angle ?l {g}) {m})\n      (< (angle ?l {g}) {below})"
+        stop_range = f"(<= (angle ?l {g}) 0)\n        (>= (angle ?l {g}) 180)"
+    else:
+        # The upper end needs no test: at 360 back-to-zero wraps the angle to 0 (<= 180).
+        start_range = f"(> (angle ?l {g}) {fmt_number(180 + WRAP_MARGIN)})"
+        stop_range = f"(<= (angle ?l {g}) 180)"
+    return f"""
+  ;; DEPARTURE (VAL): events with Boolean flags switch gravity on and off (self-falsifying
+  ;; under VAL's slack); start and stop thresholds are {m} deg apart (no bouncing).
+  (:event start-gravity-{sign}
+    :parameters (?l - link)
+    :precondition (and
+      (not ({flag} ?l))
+      (not ({other} ?l))
+      {_feels("?l")}
+      {start_range})
+    :effect (and
+      ({flag} ?l)
+      (assign (gravity-speed ?l) 0)))
+
+  ;; Rest reached, or ?l or a link tip-ward of it grasped: the speed resets to 0.
+  (:event stop-gravity-{sign}
+    :parameters (?l - link)
+    :precondition (and
+      ({flag} ?l)
+      (or
+        (<= (link-index ?l) (+ (held-index) 0.5))
+        {stop_range}))
+    :effect (and
+      (not ({flag} ?l))
+      (assign (gravity-speed ?l) 0)))
+
+  (:process gravity-{sign}
+    :parameters (?l - link)
+    :precondition (and
+      ({flag} ?l)
+      {_feels("?l")})
+    :effect ({sign} (angle ?l {g}) (* #t (gravity-speed ?l))))
+
+  (:process propagate-gravity-{sign}
+    :parameters (?l1 - link ?l2 - link)
+    :precondition (and
+      (affects ?l1 ?l2)
+      ({flag} ?l1)
+      {_feels("?l1")})
+    :effect ({sign} (angle ?l2 {g}) (* #t (gravity-speed ?l1))))
+"""
+
+
+def _uacm(options: EncodingOptions) -> str:
+    accelerate = f"""
+  ;; The speed of a falling link grows at the problem's (acceleration) [deg/s^2].
+  (:process gravity-accelerate
+    :parameters (?l - link)
+    :precondition (and
+      (or (decreasing-angle-gravity ?l) (increasing-angle-gravity ?l))
+      {_feels("?l")})
+    :effect (increase (gravity-speed ?l) (* #t (acceleration))))
+"""
+    return _uacm_events(options, "decrease") + _uacm_events(options, "increase") + accelerate
+
+
+def _reach() -> str:
+    return """
+  ;; After a release the hands need (reach-time) seconds before the next grasp.
+  (:process reach
+    :parameters ()
+    :precondition (reaching)
+    :effect (increase (reach-clock) (* #t 1)))
+
+  (:event hands-ready
+    :parameters ()
+    :precondition (and
+      (reaching)
+      (>= (reach-clock) (reach-time)))
+    :effect (not (reaching)))
+"""
+
+
+_OBSERVE = """
+  ;; No effect: lets a plan end at the moment a process completes the goal (VAL checks the
+  ;; goal at the last happening).
+  (:action observe
+    :parameters ()
+    :precondition (and)
+    :effect (and))
+"""
+
+
+def domain_pddl(obj: ArticulatedObject | None, options: EncodingOptions) -> str:
+    """The PDDL+ domain text for ``options``.
+
+    Args:
+        obj: The object (accepted for the interface; the domain is the same for every object:
+            links, their number and their facts enter through the problem).
+        options: Gravity model, planes and the gravity plane.
+
+    Returns:
+        The domain as PDDL+ text, ending with a newline.
+    """
+    del obj  # the domain does not depend on the object
+    parts = [_header(options), _robot(options, "increase"), _robot(options, "decrease")]
+    parts.append(_wrap_events())
+    if options.model == "ucm":
+        parts.append(_ucm(options))
+    elif options.model == "uacm":
+        parts.append(_uacm(options))
+    if options.reach_time is not None:
+        parts.append(_reach())
+    parts.append(_OBSERVE)
+    return "".join(parts) + ")\n"

@@ -1,0 +1,59 @@
+"""Encoding options: which gravity model, its speeds, the planes (a frozen config dataclass)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import Literal
+
+from artiplan.model import PLANES, VERTICAL_PLANE
+
+Model = Literal["ng", "ucm", "uacm"]
+MODELS: tuple[str, ...] = ("ng", "ucm", "uacm")
+
+
+@dataclass(frozen=True)
+class EncodingOptions:
+    """How to encode an articulated object in PDDL+.
+
+    Attributes:
+        model: ``"ng"`` (no gravity), ``"ucm"`` (uniform circular motion) or ``"uacm"``
+            (uniformly accelerated circular motion).
+        speed_i: Robot rotation speed when increasing an angle [deg/s].
+        speed_d: Robot rotation speed when decreasing an angle [deg/s].
+        speed_g: UCM only: angular speed of a link under gravity [deg/s].
+        acceleration: UACM only: angular acceleration of a link under gravity [deg/s^2].
+        planes: Plane names, one angle per link on each (default ``xy-axes``, ``z-axis``).
+        gravity_plane: The plane on which gravity acts (must be one of ``planes``).
+        reach_time: Optional time [s] the robot needs between releasing a link and the next
+            grasp (``None``: grasps are instantaneous, as in the paper). Gravity keeps acting
+            meanwhile.
+    """
+
+    model: Model = "ng"
+    speed_i: float = 10.0
+    speed_d: float = 10.0
+    speed_g: float = 0.1
+    acceleration: float = 0.1
+    planes: tuple[str, ...] = PLANES
+    gravity_plane: str = VERTICAL_PLANE
+    reach_time: float | None = None
+
+    def __post_init__(self) -> None:
+        if self.model not in MODELS:
+            raise ValueError(f"unknown model {self.model!r}; valid models: {', '.join(MODELS)}")
+        for name in ("speed_i", "speed_d", "speed_g", "acceleration"):
+            if getattr(self, name) <= 0:
+                raise ValueError(f"{name} must be positive, got {getattr(self, name)}")
+        if not self.planes or len(set(self.planes)) != len(self.planes):
+            raise ValueError(f"planes must be distinct and non-empty, got {self.planes}")
+        if self.model != "ng" and self.gravity_plane not in self.planes:
+            raise ValueError(
+                f"gravity plane {self.gravity_plane!r} is not one of the planes {self.planes}"
+            )
+        if self.reach_time is not None and self.reach_time < 0:
+            raise ValueError(f"reach_time must be >= 0, got {self.reach_time}")
+
+    @property
+    def has_gravity(self) -> bool:
+        """True for UCM and UACM."""
+        return self.model != "ng"
