@@ -1,0 +1,228 @@
+"""Ground a domain and problem into the indexed :class:`~artiplan.pddl.task.Task`.
+
+Steps, each cheap: check the problem against the domain; find the static predicates and
+functions (never changed by any effect); instantiate every operator (static conjuncts checked as
+parameters are bound); relaxed reachability prunes operators that can never apply; facts that can
+never become true fold to ``FALSE``, facts true initially and never deleted to ``TRUE``; the
+remaining facts are renumbered.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Iterable
+
+from artiplan.errors import InputError
+from artiplan.pddl import syntax as s
+from artiplan.pddl import task as t
+from artiplan.pddl.checker import check_problem
+from artiplan.pddl.instantiate import GroundContext, ground_condition, ground_num
+from artiplan.pddl.operators import Instance, instantiate
+from artiplan.pddl.reachability import reachable
+from artiplan.pddl.simplify import remap_condition
+from artiplan.pddl.types import TypeHierarchy, objects_by_type
+
+
+def changed_symbols(domain: s.Domain) -> tuple[set[str], set[str]]:
+    """Lower-case names of the predicates and functions some effect changes."""
+    preds: set[str] = set()
+    funcs: set[str] = set()
+
+    def walk(e: s.EffectNode) -> None:
+        if isinstance(e, s.AddEffect | s.DeleteEffect):
+            preds.add(e.atom.predicate.lower())
+        elif isinstance(e, s.NumericAssignment):
+            funcs.add(e.target.name.lower())
+        elif isinstance(e, s.EffectConjunction):
+            for p in e.parts:
+                walk(p)
+        elif isinstance(e, s.ForallEffect | s.WhenEffect):
+            walk(e.body if isinstance(e, s.ForallEffect) else e.effect)
+        elif isinstance(e, s.Timed):
+            walk(e.body)  # type: ignore[arg-type]
+
+    for op in domain.operators:
+        if op.effect is not None:
+            walk(op.effect)
+    return preds, funcs
+
+
+def _context(domain: s.Domain, problem: s.Problem) -> tuple[GroundContext, dict[str, str]]:
+    """The grounding context, and the display spelling of predicate and function names."""
+    objects: dict[str, s.TypedName] = {}
+    for o in (*domain.constants, *problem.objects):
+        objects.setdefault(o.name.lower(), o)
+    by_type = objects_by_type(TypeHierarchy.of(domain), tuple(objects.values()))
+    changed_preds, changed_funcs = changed_symbols(domain)
+    static_preds = frozenset(p.name.lower() for p in domain.predicates) - changed_preds
+    static_funcs = frozenset(f.name.lower() for f in domain.functions) - changed_funcs
+    static_facts = set()
+    static_values: dict[tuple[str, ...], float] = {}
+    for item in problem.init:
+        if isinstance(item, s.AtomicFormula) and item.predicate.lower() in static_preds:
+            static_facts.add((item.predicate.lower(), *(a.name.lower() for a in item.args)))
+        elif isinstance(item, s.InitValue) and item.target.name.lower() in static_funcs:
+            key = (item.target.name.lower(), *(a.name.lower() for a in item.target.args))
+            static_values[key] = item.value
+    ctx = GroundContext(
+        objects_by_type=by_type,
+        display={k: o.name for k, o in objects.items()},
+        static_predicates=static_preds,
+        static_facts=frozenset(static_facts),
+        static_values=static_values,
+        static_functions=static_funcs,
+    )
+    symbols = {p.name.lower(): p.name for p in domain.predicates}
+    symbols.update({f.name.lower(): f.name for f in domain.functions})
+    return ctx, symbols
+
+
+def ground(domain: s.Domain, problem: s.Problem) -> t.Task:
+    """Ground ``problem`` of ``domain`` (both syntax trees) into an indexed task."""
+    start = time.perf_counter()
+    warnings = [*domain.warnings, *check_problem(domain, problem)]
+    for op in domain.operators:
+        if op.kind == "durative-action":
+            raise InputError(
+                f"durative action '{op.name}': artiplan grounds PDDL+ (actions, processes, "
+                "events), not PDDL 2.1 durative actions", op.loc,
+                expected=":action, :process or :event", found=":durative-action",
+            )
+    ctx, symbols = _context(domain, problem)
+    declared = {f.name.lower() for f in domain.functions}
+    init_values: dict[int, float] = {}
+    init_facts: set[int] = set()
+    for item in problem.init:
+        if isinstance(item, s.InitValue):
+            key = (item.target.name.lower(), *(a.name.lower() for a in item.target.args))
+            if key[0] in declared and key[0] not in ctx.static_functions:
+                init_values[ctx.fluent(key)] = item.value
+        elif item.predicate.lower() not in ctx.static_predicates:
+            init_facts.add(ctx.fact((item.predicate.lower(),
+                                     *(a.name.lower() for a in item.args))))
+    instances: list[Instance] = []
+    pruned = 0
+    for op in domain.operators:
+        found, rejected = instantiate(ctx, op)
+        instances.extend(found)
+        pruned += rejected
+    goal = t.TRUE if problem.goal is None else ground_condition(ctx, problem.goal, {})
+    metric, metric_warning = _metric(ctx, problem.metric)
+    warnings.extend(metric_warning)
+    applicable, reached = reachable(instances, init_facts)
+    kept = [inst for inst, ok in zip(instances, applicable, strict=True) if ok]
+    pruned += len(instances) - len(kept)
+    return _assemble(ctx, symbols, domain, problem, kept, init_facts, reached, init_values,
+                     goal, metric, pruned, warnings, start)
+
+
+def _metric(ctx: GroundContext, spec: s.MetricSpec | None) -> tuple[t.Metric | None, list[str]]:
+    if spec is None:
+        return None, []
+    if isinstance(spec.expr, s.Special) and spec.expr.name == "total-time":
+        return t.Metric(spec.direction, None, uses_total_time=True), []
+    try:
+        return t.Metric(spec.direction, ground_num(ctx, spec.expr, {})), []
+    except InputError:
+        where = f"{spec.loc}: " if spec.loc is not None else ""
+        return None, [f"{where}metric mixes total-time with other terms: not supported, ignored"]
+
+
+def _deleted(effects: Iterable[t.Effect]) -> set[int]:
+    out: set[int] = set()
+    for e in effects:
+        out.update(e.delete)
+        out |= _deleted(ce.effect for ce in e.conditional)
+    return out
+
+
+def _fold_map(n_facts: int, init: set[int], reached: set[int], deleted: set[int]
+              ) -> tuple[dict[int, t.Condition], list[int]]:
+    """Old fact id -> its folded condition; and the kept old ids in new order."""
+    mapping: dict[int, t.Condition] = {}
+    kept: list[int] = []
+    for old in range(n_facts):
+        if old not in reached:
+            mapping[old] = t.FALSE
+        elif old in init and old not in deleted:
+            mapping[old] = t.TRUE
+        else:
+            mapping[old] = t.Atom(len(kept))
+            kept.append(old)
+    return mapping, kept
+
+
+def remap_effect(e: t.Effect, mapping: dict[int, t.Condition]) -> t.Effect:
+    """``e`` over the renumbered facts; parts on folded facts dropped."""
+    add = [m.fact for f in e.add if isinstance(m := mapping[f], t.Atom)]
+    delete = [m.fact for f in e.delete if isinstance(m := mapping[f], t.Atom)]
+    numeric = list(e.numeric)
+    conditional: list[t.ConditionalEffect] = []
+    for ce in e.conditional:
+        cond = remap_condition(ce.condition, mapping)
+        inner = remap_effect(ce.effect, mapping)
+        if cond == t.FALSE or inner == t.EMPTY_EFFECT:
+            continue
+        if cond == t.TRUE:
+            add += inner.add
+            delete += inner.delete
+            numeric += inner.numeric
+            conditional += inner.conditional
+        else:
+            conditional.append(t.ConditionalEffect(cond, inner))
+    return t.Effect(tuple(add), tuple(delete), tuple(numeric), tuple(conditional))
+
+
+def _assemble(
+    ctx: GroundContext, symbols: dict[str, str], domain: s.Domain, problem: s.Problem,
+    kept: list[Instance], init_facts: set[int], reached: set[int],
+    init_values: dict[int, float], goal: t.Condition, metric: t.Metric | None, pruned: int,
+    warnings: list[str], start: float,
+) -> t.Task:
+    effects = [inst.effect.effect() for inst in kept]
+    mapping, kept_facts = _fold_map(len(ctx.fact_ids), init_facts, reached, _deleted(effects))
+    actions: list[t.GroundAction] = []
+    events: list[t.GroundAction] = []
+    processes: list[t.GroundProcess] = []
+    for inst, eff in zip(kept, effects, strict=True):
+        pre = remap_condition(inst.precondition, mapping)
+        if pre == t.FALSE:
+            pruned += 1
+            continue
+        args = tuple(ctx.display.get(a, a) for a in inst.args)
+        effect = remap_effect(eff, mapping)
+        if inst.op.kind == "process":
+            processes.append(t.GroundProcess(inst.op.name, args, pre,
+                                             tuple(inst.effect.continuous), effect))
+        else:
+            bucket = events if inst.op.kind == "event" else actions
+            bucket.append(t.GroundAction(inst.op.name, args, pre, effect,
+                                         "event" if inst.op.kind == "event" else "action"))
+    fact_keys = list(ctx.fact_ids)
+    fluent_keys = list(ctx.fluent_ids)
+    facts = tuple(_name(ctx, symbols, fact_keys[old]) for old in kept_facts)
+    fluents = tuple(_name(ctx, symbols, k) for k in fluent_keys)
+    stats = t.GroundingStats(
+        facts=len(facts), fluents=len(fluents), actions=len(actions), events=len(events),
+        processes=len(processes), pruned=pruned, seconds=time.perf_counter() - start,
+    )
+    return t.Task(
+        domain_name=domain.name,
+        problem_name=problem.name,
+        facts=facts,
+        fluents=fluents,
+        init_facts=frozenset(m.fact for f in init_facts if isinstance(m := mapping[f], t.Atom)),
+        init_values=tuple(init_values.get(i) for i in range(len(fluents))),
+        goal=remap_condition(goal, mapping),
+        actions=tuple(actions),
+        events=tuple(events),
+        processes=tuple(processes),
+        metric=metric,
+        stats=stats,
+        warnings=tuple(warnings),
+    )
+
+
+def _name(ctx: GroundContext, symbols: dict[str, str], key: tuple[str, ...]) -> str:
+    return "(" + " ".join((symbols.get(key[0], key[0]),
+                           *(ctx.display.get(a, a) for a in key[1:]))) + ")"

@@ -1,0 +1,124 @@
+"""Tokens and S-expressions of PDDL text, with 1-based line and column of every token.
+
+``;`` starts a comment to the end of the line. A token ``-type`` (a type written right after
+``?x -``, without a space) is split into ``-`` and ``type``; ``-3`` and ``-.5`` stay numbers.
+"""
+
+from __future__ import annotations
+
+import re
+from dataclasses import dataclass
+
+from artiplan.errors import InputError, SourceLocation
+
+_TOKEN = re.compile(r"\s+|;[^\n]*|\(|\)|[^\s();]+")
+_NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
+
+
+@dataclass(frozen=True)
+class Token:
+    """One atom of the text (a name, variable, number or keyword)."""
+
+    text: str
+    loc: SourceLocation
+
+    @property
+    def lower(self) -> str:
+        return self.text.lower()
+
+    def is_number(self) -> bool:
+        return _NUMBER.match(self.text) is not None
+
+
+@dataclass(frozen=True)
+class SList:
+    """A parenthesised list; ``loc`` is its opening parenthesis, ``end`` its closing one."""
+
+    items: tuple[SExpr, ...]
+    loc: SourceLocation
+    end: SourceLocation
+
+    def head(self) -> str | None:
+        """The lower-cased first token, if the list starts with one."""
+        if self.items and isinstance(self.items[0], Token):
+            return self.items[0].lower
+        return None
+
+
+SExpr = Token | SList
+
+
+def describe(expr: SExpr | None) -> str:
+    """A short text of ``expr`` for error messages (the ``found`` part)."""
+    if expr is None:
+        return "end of list"
+    if isinstance(expr, Token):
+        return expr.text
+    head = expr.head()
+    return f"({head} ...)" if head is not None else "(...)"
+
+
+def is_number(text: str) -> bool:
+    """True if ``text`` reads as a PDDL number (``.5``, ``-3``, ``1e-3``)."""
+    return _NUMBER.match(text) is not None
+
+
+def tokenize(text: str, filename: str) -> list[Token]:
+    """All tokens of ``text``, comments dropped, ``(`` and ``)`` as tokens of their own."""
+    tokens: list[Token] = []
+    line, line_start = 1, 0
+    for m in _TOKEN.finditer(text):
+        s = m.group()
+        start = m.start()
+        if s[0].isspace() or s[0] == ";":
+            newlines = s.count("\n")
+            if newlines:
+                line += newlines
+                line_start = start + s.rfind("\n") + 1
+            continue
+        col = start - line_start + 1
+        if len(s) > 1 and s[0] == "-" and not is_number(s):
+            tokens.append(Token("-", SourceLocation(filename, line, col)))
+            tokens.append(Token(s[1:], SourceLocation(filename, line, col + 1)))
+        else:
+            tokens.append(Token(s, SourceLocation(filename, line, col)))
+    return tokens
+
+
+def read_sexpr(text: str, filename: str) -> SList:
+    """The single top-level list of ``text`` (a domain or problem file)."""
+    tokens = tokenize(text, filename)
+    if not tokens:
+        raise InputError(
+            "empty file", SourceLocation(filename, 1, 1), expected="'(define'", found="nothing"
+        )
+    stack: list[tuple[list[SExpr], SourceLocation]] = []
+    top: SList | None = None
+    for tok in tokens:
+        if top is not None:
+            raise InputError(
+                "text after the end of the definition", tok.loc, expected="end of file",
+                found=tok.text,
+            )
+        if tok.text == "(":
+            stack.append(([], tok.loc))
+        elif tok.text == ")":
+            if not stack:
+                raise InputError("unbalanced ')'", tok.loc, expected="'('", found=")")
+            items, loc = stack.pop()
+            node = SList(tuple(items), loc, tok.loc)
+            if stack:
+                stack[-1][0].append(node)
+            else:
+                top = node
+        elif not stack:
+            raise InputError("expected '(' at the start", tok.loc, expected="'('", found=tok.text)
+        else:
+            stack[-1][0].append(tok)
+    if stack:
+        raise InputError(
+            "unbalanced '(': the file ends before it is closed", stack[-1][1],
+            expected="')'", found="end of file",
+        )
+    assert top is not None
+    return top

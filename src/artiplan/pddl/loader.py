@@ -1,0 +1,47 @@
+"""Load a task from files or text: parse, check and ground in one call."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from artiplan.errors import InputError
+from artiplan.pddl import syntax as s
+from artiplan.pddl.grounding import ground
+from artiplan.pddl.parser import parse_domain, parse_problem
+from artiplan.pddl.task import Task
+
+
+def read_source(source: str | Path, default_name: str) -> tuple[str, str]:
+    """``(text, filename)`` of a path or of PDDL text (text starts with ``(`` or ``;``)."""
+    if isinstance(source, Path):
+        return _read(source), str(source)
+    stripped = source.lstrip()
+    if stripped.startswith(("(", ";")) or "\n" in source:
+        return source, default_name
+    return _read(Path(source)), source
+
+
+def _read(path: Path) -> str:
+    try:
+        return path.read_text(encoding="utf-8")
+    except OSError as exc:
+        raise InputError(f"cannot read {path}: {exc.strerror or exc}") from exc
+    except UnicodeDecodeError as exc:
+        raise InputError(f"{path} is not UTF-8 text: {exc}") from exc
+
+
+def load_domain(source: str | Path) -> s.Domain:
+    """Parse and check a domain given as a path or as text."""
+    text, name = read_source(source, "<domain>")
+    return parse_domain(text, name)
+
+
+def load_problem(source: str | Path) -> s.Problem:
+    """Parse a problem given as a path or as text."""
+    text, name = read_source(source, "<problem>")
+    return parse_problem(text, name)
+
+
+def load_task(domain: str | Path, problem: str | Path) -> Task:
+    """Parse, check and ground; ``domain`` and ``problem`` are paths or PDDL text."""
+    return ground(load_domain(domain), load_problem(problem))

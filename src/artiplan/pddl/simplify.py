@@ -1,0 +1,106 @@
+"""Smart constructors that fold constants while building indexed conditions and expressions."""
+
+from __future__ import annotations
+
+import operator
+from collections.abc import Callable, Iterable
+
+from artiplan.pddl import task as t
+
+_ARITH: dict[str, Callable[[float, float], float]] = {
+    "+": operator.add,
+    "-": operator.sub,
+    "*": operator.mul,
+    "/": operator.truediv,
+}
+
+_COMPARE: dict[str, Callable[[float, float], bool]] = {
+    "<": operator.lt,
+    "<=": operator.le,
+    ">": operator.gt,
+    ">=": operator.ge,
+    "=": operator.eq,
+}
+
+
+def make_and(parts: Iterable[t.Condition]) -> t.Condition:
+    """``And`` without ``TRUE`` parts, flattened; ``FALSE`` if any part is ``FALSE``."""
+    out: list[t.Condition] = []
+    for p in parts:
+        if isinstance(p, t.Truth):
+            if not p.value:
+                return t.FALSE
+            continue
+        if isinstance(p, t.And):
+            out.extend(p.parts)
+        else:
+            out.append(p)
+    out = list(dict.fromkeys(out))
+    if not out:
+        return t.TRUE
+    return out[0] if len(out) == 1 else t.And(tuple(out))
+
+
+def make_or(parts: Iterable[t.Condition]) -> t.Condition:
+    """``Or`` without ``FALSE`` parts, flattened; ``TRUE`` if any part is ``TRUE``."""
+    out: list[t.Condition] = []
+    for p in parts:
+        if isinstance(p, t.Truth):
+            if p.value:
+                return t.TRUE
+            continue
+        if isinstance(p, t.Or):
+            out.extend(p.parts)
+        else:
+            out.append(p)
+    out = list(dict.fromkeys(out))
+    if not out:
+        return t.FALSE
+    return out[0] if len(out) == 1 else t.Or(tuple(out))
+
+
+def make_not(c: t.Condition) -> t.Condition:
+    if isinstance(c, t.Truth):
+        return t.Truth(not c.value)
+    if isinstance(c, t.Not):
+        return c.operand
+    return t.Not(c)
+
+
+def make_arith(op: str, left: t.NumExpr, right: t.NumExpr) -> t.NumExpr:
+    """``BinOp``, or a ``Const`` when both sides are constant (never divides by zero)."""
+    if (isinstance(left, t.Const) and isinstance(right, t.Const)
+            and not (op == "/" and right.value == 0)):
+        return t.Const(_ARITH[op](left.value, right.value))
+    return t.BinOp(op, left, right)  # type: ignore[arg-type]
+
+
+def make_compare(op: str, left: t.NumExpr, right: t.NumExpr) -> t.Condition:
+    """``Comparison``, or a ``Truth`` when both sides are constant."""
+    if isinstance(left, t.Const) and isinstance(right, t.Const):
+        return t.Truth(_COMPARE[op](left.value, right.value))
+    return t.Comparison(op, left, right)  # type: ignore[arg-type]
+
+
+def remap_condition(c: t.Condition, mapping: dict[int, t.Condition]) -> t.Condition:
+    """``c`` with every ``Atom(i)`` replaced by ``mapping[i]``, simplified."""
+    if isinstance(c, t.Atom):
+        return mapping[c.fact]
+    if isinstance(c, t.And):
+        return make_and(remap_condition(p, mapping) for p in c.parts)
+    if isinstance(c, t.Or):
+        return make_or(remap_condition(p, mapping) for p in c.parts)
+    if isinstance(c, t.Not):
+        return make_not(remap_condition(c.operand, mapping))
+    return c
+
+
+def atoms_of(c: t.Condition) -> Iterable[int]:
+    """Fact ids mentioned in ``c``."""
+    if isinstance(c, t.Atom):
+        yield c.fact
+    elif isinstance(c, t.And | t.Or):
+        for p in c.parts:
+            yield from atoms_of(p)
+    elif isinstance(c, t.Not):
+        yield from atoms_of(c.operand)
