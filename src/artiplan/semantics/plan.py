@@ -17,6 +17,8 @@ class TimedAction:
     name: str
     args: tuple[str, ...] = ()
     duration: float | None = None
+    #: Line of the plan file it came from (for messages); not part of equality.
+    line: int | None = field(default=None, compare=False)
 
     @property
     def signature(self) -> str:
