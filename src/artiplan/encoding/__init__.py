@@ -9,6 +9,7 @@ from artiplan.encoding.goals import (
     goal_links,
     make_goal,
 )
+from artiplan.encoding.gravity import gravity_links
 from artiplan.encoding.options import MODELS, EncodingOptions
 from artiplan.encoding.problem import problem_pddl
 from artiplan.encoding.suite import SIZES, SUITE_MODELS, make_task, suite_tasks, write_suite
@@ -26,6 +27,7 @@ __all__ = [
     "domain_name",
     "domain_pddl",
     "goal_links",
+    "gravity_links",
     "make_goal",
     "make_task",
     "problem_pddl",

@@ -96,9 +96,7 @@ def _parameters(options: EncodingOptions) -> dict[str, Any]:
     return params
 
 
-def write_suite(
-    outdir: str | Path, seed: int = 0, goal_style: str = "threshold"
-) -> list[Path]:
+def write_suite(outdir: str | Path, seed: int = 0, goal_style: str = "threshold") -> list[Path]:
     """Write the 240 problems, 6 domains and ``suite.json`` under ``outdir``.
 
     Args:
