@@ -1,0 +1,101 @@
+"""The planner interface every backend implements, and the result it returns.
+
+One small abstract class (:class:`Planner`) with one method (:meth:`Planner.solve`) returning a
+small typed value (:class:`BackendResult`). Every backend runs its planner as a separate process
+under the same limits (:mod:`artiplan.backends.runner`), so their numbers compare.
+"""
+
+from __future__ import annotations
+
+import abc
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+try:
+    from artiplan.search.api import PlanStatus
+except ImportError:  # pragma: no cover - until the search stage lands; same members
+    from enum import Enum
+
+    class PlanStatus(Enum):  # type: ignore[no-redef]
+        SOLVED = "solved"
+        UNSOLVABLE_PROVEN = "unsolvable"
+        NO_PLAN = "no-plan"
+        TIMEOUT = "timeout"
+        MEMOUT = "memout"
+        ERROR = "error"
+
+if TYPE_CHECKING:
+    from artiplan.semantics.plan import Plan
+
+#: Status names used in result rows and reports (JSON-friendly), one per ``PlanStatus``.
+STATUS_NAMES: dict[str, str] = {
+    "SOLVED": "solved",
+    "UNSOLVABLE_PROVEN": "unsolvable",
+    "NO_PLAN": "no-plan",
+    "TIMEOUT": "timeout",
+    "MEMOUT": "memout",
+    "ERROR": "error",
+}
+
+
+def status_name(status: PlanStatus) -> str:
+    """The short name of a status as written in result rows (``solved``, ``timeout``, ...)."""
+    return STATUS_NAMES[status.name]
+
+
+@dataclass(frozen=True)
+class BackendResult:
+    """What one planner run produced.
+
+    ``cpu_s``: CPU time of the planner process and its children [s] (user + system);
+    ``wall_s``: elapsed time [s]; ``peak_mb``: peak resident memory of the process tree [MiB];
+    ``plan``: the plan converted to artiplan's :class:`~artiplan.semantics.plan.Plan`, or None;
+    ``plan_text``: the plan as the planner wrote it (its own format); ``raw_output``: the
+    planner's stdout and stderr; ``extra``: backend-specific facts (e.g. ENHSP's own verdict).
+    """
+
+    status: PlanStatus
+    plan: Plan | None
+    cpu_s: float
+    wall_s: float
+    peak_mb: float
+    raw_output: str = ""
+    plan_text: str = ""
+    returncode: int | None = None
+    message: str = ""
+    extra: dict[str, Any] = field(default_factory=dict)
+
+
+class Planner(abc.ABC):
+    """A planner that solves a PDDL+ problem given as two files.
+
+    Subclasses set :attr:`name` and implement :meth:`solve`.
+    """
+
+    #: The name used on the command line (``--planners NAME``) and in result rows.
+    name: str = ""
+
+    @abc.abstractmethod
+    def solve(
+        self,
+        domain_path: str | Path,
+        problem_path: str | Path,
+        *,
+        time_limit: float | None = None,
+        memory_limit: float | None = None,
+    ) -> BackendResult:
+        """Plan for the problem.
+
+        Args:
+            domain_path: PDDL+ domain file.
+            problem_path: PDDL+ problem file.
+            time_limit: CPU-time limit in [s] (None: none).
+            memory_limit: memory limit in [MiB] (None: none).
+
+        Raises:
+            ExternalToolError: the planner's program is missing (exit code 9).
+        """
+
+    def check_available(self) -> None:  # noqa: B027 - optional hook, most planners need nothing
+        """Raise :class:`~artiplan.errors.ExternalToolError` if the planner cannot run here."""
