@@ -15,6 +15,7 @@ from artiplan.pddl.loader import load_domain, load_problem, load_task
 from artiplan.pddl.parser import parse_domain, parse_problem
 from artiplan.pddl.syntax import Domain, Problem
 from artiplan.pddl.task import Task
+from artiplan.pddl.writer import write_domain, write_problem
 
 __all__ = [
     "Domain",
@@ -27,4 +28,6 @@ __all__ = [
     "load_task",
     "parse_domain",
     "parse_problem",
+    "write_domain",
+    "write_problem",
 ]
