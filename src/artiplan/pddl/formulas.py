@@ -159,10 +159,20 @@ def read_formula(expr: SExpr) -> s.Formula:
         if head == "=" and _is_object_term(a) and _is_object_term(b):
             return s.Equals(read_term(a), read_term(b), lst.loc)
         return s.Compare(head, read_num(a), read_num(b), lst.loc)  # type: ignore[arg-type]
-    if head in g.TIME_SPECIFIERS:
+    if _is_timed(lst):
         when = _time_specifier(lst)
         return s.Timed(when, read_formula(lst.items[2]), lst.loc)  # type: ignore[arg-type]
     return read_atom(lst)
+
+
+def _is_timed(lst: SList) -> bool:
+    """``(at start ...)``, ``(at end ...)``, ``(over all ...)``; ``(at truck depot)`` is an atom
+    of a predicate named ``at``."""
+    head = lst.head()
+    if head not in g.TIME_SPECIFIERS or len(lst.items) < 2:
+        return False
+    second = lst.items[1]
+    return isinstance(second, Token) and second.lower in g.TIME_SPECIFIERS[head]
 
 
 def _time_specifier(lst: SList) -> str:
@@ -205,7 +215,7 @@ def read_effect(expr: SExpr) -> s.EffectNode:
             raise fail(f"'{head}' needs a function term to change", lst.items[1],
                        expected="(function args...)")
         return s.NumericAssignment(head, target, read_num(lst.items[2]), lst.loc)  # type: ignore[arg-type]
-    if head in g.TIME_SPECIFIERS:
+    if _is_timed(lst):
         when = _time_specifier(lst)
         return s.Timed(when, read_effect(lst.items[2]), lst.loc)  # type: ignore[arg-type]
     if head in g.CONNECTIVES or head in g.QUANTIFIERS or head in g.COMPARISONS:

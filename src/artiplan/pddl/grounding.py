@@ -10,7 +10,6 @@ remaining facts are renumbered.
 from __future__ import annotations
 
 import time
-from collections.abc import Iterable
 
 from artiplan.errors import InputError
 from artiplan.pddl import syntax as s
@@ -19,7 +18,14 @@ from artiplan.pddl.checker import check_problem
 from artiplan.pddl.instantiate import GroundContext, ground_condition, ground_num
 from artiplan.pddl.operators import Instance, instantiate
 from artiplan.pddl.reachability import reachable
-from artiplan.pddl.simplify import remap_condition
+from artiplan.pddl.renumber import (
+    Renumbering,
+    deleted_facts,
+    fluents_in_condition,
+    fluents_in_effect,
+    fluents_in_num,
+    fold_facts,
+)
 from artiplan.pddl.types import TypeHierarchy, objects_by_type
 
 
@@ -128,51 +134,6 @@ def _metric(ctx: GroundContext, spec: s.MetricSpec | None) -> tuple[t.Metric | N
         return None, [f"{where}metric mixes total-time with other terms: not supported, ignored"]
 
 
-def _deleted(effects: Iterable[t.Effect]) -> set[int]:
-    out: set[int] = set()
-    for e in effects:
-        out.update(e.delete)
-        out |= _deleted(ce.effect for ce in e.conditional)
-    return out
-
-
-def _fold_map(n_facts: int, init: set[int], reached: set[int], deleted: set[int]
-              ) -> tuple[dict[int, t.Condition], list[int]]:
-    """Old fact id -> its folded condition; and the kept old ids in new order."""
-    mapping: dict[int, t.Condition] = {}
-    kept: list[int] = []
-    for old in range(n_facts):
-        if old not in reached:
-            mapping[old] = t.FALSE
-        elif old in init and old not in deleted:
-            mapping[old] = t.TRUE
-        else:
-            mapping[old] = t.Atom(len(kept))
-            kept.append(old)
-    return mapping, kept
-
-
-def remap_effect(e: t.Effect, mapping: dict[int, t.Condition]) -> t.Effect:
-    """``e`` over the renumbered facts; parts on folded facts dropped."""
-    add = [m.fact for f in e.add if isinstance(m := mapping[f], t.Atom)]
-    delete = [m.fact for f in e.delete if isinstance(m := mapping[f], t.Atom)]
-    numeric = list(e.numeric)
-    conditional: list[t.ConditionalEffect] = []
-    for ce in e.conditional:
-        cond = remap_condition(ce.condition, mapping)
-        inner = remap_effect(ce.effect, mapping)
-        if cond == t.FALSE or inner == t.EMPTY_EFFECT:
-            continue
-        if cond == t.TRUE:
-            add += inner.add
-            delete += inner.delete
-            numeric += inner.numeric
-            conditional += inner.conditional
-        else:
-            conditional.append(t.ConditionalEffect(cond, inner))
-    return t.Effect(tuple(add), tuple(delete), tuple(numeric), tuple(conditional))
-
-
 def _assemble(
     ctx: GroundContext, symbols: dict[str, str], domain: s.Domain, problem: s.Problem,
     kept: list[Instance], init_facts: set[int], reached: set[int],
@@ -180,28 +141,49 @@ def _assemble(
     warnings: list[str], start: float,
 ) -> t.Task:
     effects = [inst.effect.effect() for inst in kept]
-    mapping, kept_facts = _fold_map(len(ctx.fact_ids), init_facts, reached, _deleted(effects))
+    fact_map, kept_facts = fold_facts(len(ctx.fact_ids), init_facts, reached,
+                                      deleted_facts(effects))
+    by_facts = Renumbering(fact_map, {i: i for i in range(len(ctx.fluent_ids))})
+    ops: list[tuple[Instance, t.Condition, t.Effect]] = []
+    for inst, eff in zip(kept, effects, strict=True):
+        pre = by_facts.condition(inst.precondition)
+        if pre == t.FALSE:
+            pruned += 1
+        else:
+            ops.append((inst, pre, by_facts.effect(eff)))
+    goal = by_facts.condition(goal)
+    used = set(init_values)
+    used.update(fluents_in_condition(goal))
+    if metric is not None and metric.expr is not None:
+        used.update(fluents_in_num(metric.expr))
+    for inst, pre, eff in ops:
+        used.update(fluents_in_condition(pre))
+        used.update(fluents_in_effect(eff))
+        for c in inst.effect.continuous:
+            used.add(c.fluent)
+            used.update(fluents_in_num(c.rate))
+    old_fluents = sorted(used)
+    by_fluents = Renumbering({i: t.Atom(i) for i in range(len(kept_facts))},
+                             {old: new for new, old in enumerate(old_fluents)})
     actions: list[t.GroundAction] = []
     events: list[t.GroundAction] = []
     processes: list[t.GroundProcess] = []
-    for inst, eff in zip(kept, effects, strict=True):
-        pre = remap_condition(inst.precondition, mapping)
-        if pre == t.FALSE:
-            pruned += 1
-            continue
+    for inst, pre, eff in ops:
         args = tuple(ctx.display.get(a, a) for a in inst.args)
-        effect = remap_effect(eff, mapping)
+        pre, eff = by_fluents.condition(pre), by_fluents.effect(eff)
         if inst.op.kind == "process":
             processes.append(t.GroundProcess(inst.op.name, args, pre,
-                                             tuple(inst.effect.continuous), effect))
+                                             by_fluents.continuous(inst.effect.continuous), eff))
+        elif inst.op.kind == "event":
+            events.append(t.GroundAction(inst.op.name, args, pre, eff, "event"))
         else:
-            bucket = events if inst.op.kind == "event" else actions
-            bucket.append(t.GroundAction(inst.op.name, args, pre, effect,
-                                         "event" if inst.op.kind == "event" else "action"))
+            actions.append(t.GroundAction(inst.op.name, args, pre, eff))
     fact_keys = list(ctx.fact_ids)
     fluent_keys = list(ctx.fluent_ids)
     facts = tuple(_name(ctx, symbols, fact_keys[old]) for old in kept_facts)
-    fluents = tuple(_name(ctx, symbols, k) for k in fluent_keys)
+    fluents = tuple(_name(ctx, symbols, fluent_keys[old]) for old in old_fluents)
+    if metric is not None and metric.expr is not None:
+        metric = t.Metric(metric.direction, by_fluents.num(metric.expr), metric.uses_total_time)
     stats = t.GroundingStats(
         facts=len(facts), fluents=len(fluents), actions=len(actions), events=len(events),
         processes=len(processes), pruned=pruned, seconds=time.perf_counter() - start,
@@ -211,9 +193,9 @@ def _assemble(
         problem_name=problem.name,
         facts=facts,
         fluents=fluents,
-        init_facts=frozenset(m.fact for f in init_facts if isinstance(m := mapping[f], t.Atom)),
-        init_values=tuple(init_values.get(i) for i in range(len(fluents))),
-        goal=remap_condition(goal, mapping),
+        init_facts=frozenset(m.fact for f in init_facts if isinstance(m := fact_map[f], t.Atom)),
+        init_values=tuple(init_values.get(old) for old in old_fluents),
+        goal=by_fluents.condition(goal),
         actions=tuple(actions),
         events=tuple(events),
         processes=tuple(processes),

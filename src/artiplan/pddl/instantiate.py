@@ -13,6 +13,7 @@ from artiplan.errors import InputError
 from artiplan.pddl import grammar as g
 from artiplan.pddl import syntax as s
 from artiplan.pddl import task as t
+from artiplan.pddl.renumber import fluents_in_num
 from artiplan.pddl.simplify import make_and, make_arith, make_compare, make_not, make_or
 
 Binding = dict[str, str]
@@ -35,6 +36,8 @@ class GroundContext:
     static_functions: frozenset[str]
     fact_ids: dict[Key, int] = field(default_factory=dict)
     fluent_ids: dict[Key, int] = field(default_factory=dict)
+    #: Fluent ids of static functions the problem leaves undefined.
+    undefined: set[int] = field(default_factory=set)
 
     def fact(self, key: Key) -> int:
         i = self.fact_ids.get(key)
@@ -92,8 +95,12 @@ def ground_condition(ctx: GroundContext, f: s.Formula, binding: Binding) -> t.Co
     if isinstance(f, s.Conjunction):
         return make_and([ground_condition(ctx, p, binding) for p in f.parts])
     if isinstance(f, s.Compare):
-        return make_compare(f.op, ground_num(ctx, f.left, binding),
-                            ground_num(ctx, f.right, binding))
+        left, right = ground_num(ctx, f.left, binding), ground_num(ctx, f.right, binding)
+        if ctx.undefined and not ctx.undefined.isdisjoint(
+            (*fluents_in_num(left), *fluents_in_num(right))
+        ):
+            return t.FALSE  # reads a value nothing ever defines: can never be checked true
+        return make_compare(f.op, left, right)
     if isinstance(f, s.Negation):
         return make_not(ground_condition(ctx, f.operand, binding))
     if isinstance(f, s.Disjunction):
@@ -117,8 +124,10 @@ def ground_num(ctx: GroundContext, e: s.NumExpr, binding: Binding) -> t.NumExpr:
         return t.Const(e.value)
     if isinstance(e, s.FunctionTerm):
         key = (e.name.lower(), *(term_value(a, binding) for a in e.args))
-        if key[0] in ctx.static_functions and key in ctx.static_values:
-            return t.Const(ctx.static_values[key])
+        if key[0] in ctx.static_functions:
+            if key in ctx.static_values:
+                return t.Const(ctx.static_values[key])
+            ctx.undefined.add(ctx.fluent(key))
         return t.FluentRef(ctx.fluent(key))
     if isinstance(e, s.Arithmetic):
         args = [ground_num(ctx, a, binding) for a in e.args]
@@ -173,8 +182,10 @@ def ground_effect(
             return
         inner = EffectParts()
         ground_effect(ctx, e.effect, binding, inner)
+        if inner.continuous:
+            raise InputError("conditional continuous effects are not supported", e.loc,
+                             expected="continuous effects outside (when ...)", found="(when ...)")
         out.conditional.append(t.ConditionalEffect(cond, inner.effect()))
-        out.continuous.extend(inner.continuous)  # (checked: processes have no `when` rates)
     else:
         raise InputError("timed effects belong to durative actions, which artiplan does not "
                          "ground", e.loc, expected="a PDDL+ effect", found="(at ...)")

@@ -80,27 +80,3 @@ def make_compare(op: str, left: t.NumExpr, right: t.NumExpr) -> t.Condition:
     if isinstance(left, t.Const) and isinstance(right, t.Const):
         return t.Truth(_COMPARE[op](left.value, right.value))
     return t.Comparison(op, left, right)  # type: ignore[arg-type]
-
-
-def remap_condition(c: t.Condition, mapping: dict[int, t.Condition]) -> t.Condition:
-    """``c`` with every ``Atom(i)`` replaced by ``mapping[i]``, simplified."""
-    if isinstance(c, t.Atom):
-        return mapping[c.fact]
-    if isinstance(c, t.And):
-        return make_and(remap_condition(p, mapping) for p in c.parts)
-    if isinstance(c, t.Or):
-        return make_or(remap_condition(p, mapping) for p in c.parts)
-    if isinstance(c, t.Not):
-        return make_not(remap_condition(c.operand, mapping))
-    return c
-
-
-def atoms_of(c: t.Condition) -> Iterable[int]:
-    """Fact ids mentioned in ``c``."""
-    if isinstance(c, t.Atom):
-        yield c.fact
-    elif isinstance(c, t.And | t.Or):
-        for p in c.parts:
-            yield from atoms_of(p)
-    elif isinstance(c, t.Not):
-        yield from atoms_of(c.operand)
