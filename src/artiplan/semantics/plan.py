@@ -32,6 +32,8 @@ class TimedEvent:
     time: float
     name: str
     args: tuple[str, ...] = ()
+    #: True when the actions of the same instant triggered it (it is printed after them).
+    after_actions: bool = field(default=False, compare=False)
 
     @property
     def signature(self) -> str:
@@ -40,15 +42,22 @@ class TimedEvent:
 
 @dataclass(frozen=True)
 class Plan:
-    """Actions in time order, plus (optionally) the events predicted between them."""
+    """Actions in time order, plus (optionally) the events predicted between them.
+
+    ``end`` [s]: an explicit end of the plan (ENHSP's ``T: @PlanEND``, or the end of its last
+    ``-----waiting----``); the validator checks the goal there, as if a no-op action happened
+    at ``end`` (VAL has no such marker: write an ``observe`` action instead).
+    """
 
     actions: tuple[TimedAction, ...]
     events: tuple[TimedEvent, ...] = field(default=())
+    end: float | None = None
 
     @property
     def makespan(self) -> float:
-        """Time of the last happening [s] (0 for an empty plan)."""
-        return max((a.time + (a.duration or 0.0) for a in self.actions), default=0.0)
+        """Time of the last happening (or of ``end``) [s] (0 for an empty plan)."""
+        last = max((a.time + (a.duration or 0.0) for a in self.actions), default=0.0)
+        return last if self.end is None else max(last, self.end)
 
     def __len__(self) -> int:
         return len(self.actions)

@@ -200,18 +200,21 @@ def run_plan(
         state = _run_happenings(run, plan, state, traj)
         if check and not holds_values(task.goal, state.facts, state.values, tol):
             n = len(_groups(plan))
-            raise _condition_failure(
-                run, task.goal, state, f"goal at the last happening ({n})", -1, None
+            where = (
+                f"the plan's end ({state.time:.6f})" if plan.end else f"the last happening ({n})"
             )
+            raise _condition_failure(run, task.goal, state, f"goal at {where}", -1, None)
     except _Failure as f:
         report = f.report
         report.trajectory, report.events = traj, traj.events
     return report
 
 
-def _on_event(traj: Trajectory) -> Callable[[float, GroundAction, State], None]:
+def _on_event(
+    traj: Trajectory, after: bool = False
+) -> Callable[[float, GroundAction, State], None]:
     def cb(t: float, e: GroundAction, s: State) -> None:
-        traj.events.append(TimedEvent(t, e.name, e.args))
+        traj.events.append(TimedEvent(t, e.name, e.args, after_actions=after))
         traj.rows.append(TrajectoryRow(t, e.signature, s.values, "event"))
 
     return cb
@@ -236,7 +239,7 @@ def _run_happenings(run: _Run, plan: Plan, state: State, traj: Trajectory) -> St
                 )
             pairs.append((ta, ga))
         resolved.append(pairs)
-    cb = _on_event(traj)
+    cb, after_cb = _on_event(traj), _on_event(traj, after=True)
     recent: list[tuple[float, list[tuple[TimedAction, GroundAction]]]] = []
     flow = None
     for index, ((t, _), acts) in enumerate(zip(groups, resolved, strict=True), 1):
@@ -256,11 +259,20 @@ def _run_happenings(run: _Run, plan: Plan, state: State, traj: Trajectory) -> St
         except EventError as exc:
             raise _fail("event", str(exc), index, exc.time) from None
         for e in fired:
-            cb(t, e, state)
+            after_cb(t, e, state)
         recent = [*recent[-8:], (t, acts)]
-    if flow is None:  # empty plan: settle the initial state
-        res = advance(task, state, state.time, run.tol, run.config, on_event=cb)
+    last = groups[-1][0] if groups else 0.0
+    if flow is None or (plan.end is not None and plan.end > last + 1e-9):
+        # An empty plan settles the initial state; an explicit end lets time run to it.
+        until = max(last, plan.end or 0.0)
+        try:
+            res = advance(task, state, until, run.tol, run.config, on_event=cb)
+        except EventError as exc:
+            raise _fail("event", str(exc), len(groups) + 1, exc.time) from None
+        traj.segments.extend(res.segments)
         state, flow = res.state, res.flow
+        if until > last:
+            traj.rows.append(TrajectoryRow(until, "end", state.values))
     traj.segments.append(Segment(state.time, float("inf"), flow))  # type: ignore[arg-type]
     traj.final_state = state
     return state
