@@ -46,8 +46,8 @@ class Limits:
 
     time_limit: float | None = None
     memory_limit: float | None = None
-    wall_factor: float = 1.5
-    wall_slack: float = 5.0
+    wall_factor: float = 2.0
+    wall_slack: float = 10.0
     poll_interval: float = 0.05
 
 

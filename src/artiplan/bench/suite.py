@@ -16,8 +16,8 @@ from typing import Any
 
 from artiplan.errors import InputError
 
-#: Keys that may hold the model parameter, first match wins.
-_PARAM_KEYS = ("param", "parameter", "speed_g", "speed-g", "acceleration", "gravity")
+#: Top-level keys that may hold the model parameter, first match wins.
+_PARAM_KEYS = ("param", "parameter", "speed_g", "acceleration")
 
 
 @dataclass(frozen=True)
@@ -34,7 +34,10 @@ class SuiteProblem:
     @property
     def variant(self) -> str:
         """The model with its parameter, as Table 1's rows name it: ``ng``, ``ucm-0.1``, ..."""
-        return self.model if self.param is None else f"{self.model}-{self.param:g}"
+        if self.param is None:
+            return self.model
+        text = f"{self.param:.1f}" if round(self.param, 1) == self.param else f"{self.param:g}"
+        return f"{self.model}-{text}"
 
     @property
     def problem_id(self) -> str:
@@ -48,10 +51,11 @@ def _param(entry: dict[str, Any], model: str) -> float | None:
     for key in _PARAM_KEYS:
         if entry.get(key) is not None:
             return float(entry[key])
-    options = entry.get("options") or {}
     key = "speed_g" if model == "ucm" else "acceleration"
-    if options.get(key) is not None:
-        return float(options[key])
+    for nested in ("parameters", "options"):
+        values = entry.get(nested) or {}
+        if values.get(key) is not None:
+            return float(values[key])
     found = re.search(rf"{model}[-_]([0-9.]+)", str(entry.get("problem", "")))
     return float(found.group(1).rstrip(".")) if found else None
 
@@ -85,7 +89,8 @@ def load_suite(suite_dir: str | Path) -> list[SuiteProblem]:
 
 
 def _problem(root: Path, entry: dict[str, Any]) -> SuiteProblem:
-    model = str(entry["model"]).lower()
+    # ``artiplan suite`` writes the variant ("ucm-0.1") as model and the model as gravity_model.
+    model = str(entry.get("gravity_model") or entry["model"]).lower().split("-")[0]
     size = int(entry.get("size", entry.get("n_links", entry.get("links", 0))))
     task = int(entry.get("task", entry.get("task_index", entry.get("seed", 0))))
     return SuiteProblem(
