@@ -2,8 +2,22 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 from artiplan.pddl import load_task, parse_domain, parse_problem
-from artiplan.pddl.task import And, Atom, Comparison, Const, ContinuousEffect, FluentRef, Not
+from artiplan.pddl.task import (
+    TRUE,
+    And,
+    Atom,
+    Comparison,
+    ConditionalEffect,
+    Const,
+    ContinuousEffect,
+    Effect,
+    FluentRef,
+    Not,
+    Or,
+)
 
 
 def test_counts_by_hand(arm_domain: str, arm_problem: str) -> None:
@@ -50,3 +64,92 @@ def test_undeclared_function_in_init_warns(arm_domain: str, arm_problem: str) ->
     assert any("'foo'" in w and "never declared" in w for w in task.warnings)
     problem = parse_problem(arm_problem, "p.pddl")
     assert problem.objects[0].name == "L1"
+
+
+ROOMS = """(define (domain rooms)
+  (:requirements :typing :adl)
+  (:types room ball)
+  (:predicates (at-robby ?r - room) (at ?b - ball ?r - room) (carry ?b - ball)
+               (adjacent ?a ?b - room) (lit ?r - room) (painted ?r - room))
+  (:action move :parameters (?from ?to - room)
+    :precondition (and (at-robby ?from) (adjacent ?from ?to) (not (= ?from ?to)))
+    :effect (and (not (at-robby ?from)) (at-robby ?to) (when (not (lit ?to)) (lit ?to))))
+  (:action pick :parameters (?b - ball ?r - room)
+    :precondition (and (at ?b ?r) (at-robby ?r) (forall (?c - ball) (not (carry ?c))))
+    :effect (and (carry ?b) (not (at ?b ?r))))
+  (:action drop-all :parameters (?r - room)
+    :precondition (exists (?b - ball) (carry ?b))
+    :effect (forall (?b - ball) (when (carry ?b) (and (at ?b ?r) (not (carry ?b))))))
+  (:action switch :parameters (?r - room)
+    :precondition (imply (lit ?r) (at-robby ?r))
+    :effect (not (lit ?r)))
+  (:action paint :parameters (?r - room) :precondition (at-robby ?r) :effect (painted ?r)))
+"""
+
+ROOMS_PROBLEM = """(define (problem rooms1) (:domain rooms)
+  (:objects r1 r2 r3 r4 - room b1 b2 - ball)
+  (:init (at-robby r1) (at b1 r1) (at b2 r3) (lit r1) (painted r1)
+         (adjacent r1 r2) (adjacent r2 r1) (adjacent r2 r3) (adjacent r3 r2) (adjacent r1 r1))
+  (:goal (and (painted r1) (painted r3) (at b2 r1))))
+"""
+
+
+def test_adl_counts_by_hand() -> None:
+    task = load_task(ROOMS, ROOMS_PROBLEM)
+    names = [a.signature for a in task.actions]
+    # move: 4 adjacent pairs ((r1 r1) fails the inequality); pick: 2 balls x r1..r3 (robby
+    # never reaches r4: 2 pruned); drop-all: 4 rooms; switch: 4; paint: r1..r3 (r4 pruned).
+    assert len(names) == 4 + 6 + 4 + 4 + 3
+    assert task.stats.pruned == 3
+    assert "(move r1 r1)" not in names and "(pick b1 r4)" not in names
+    # at-robby r1..r3, at: 2 balls x 4 rooms (drop-all reaches r4), carry x2, lit r1..r3,
+    # painted r2, r3 ((painted r1) is true and never deleted: folded away).
+    assert task.stats.facts == 3 + 8 + 2 + 3 + 2
+    assert "(painted r1)" not in task.facts and "(lit r4)" not in task.facts
+
+
+def test_quantifiers_imply_when_equality() -> None:
+    task = load_task(ROOMS, ROOMS_PROBLEM)
+    f = task.fact_index
+    pick = task.action_by_signature("(pick b2 r3)")
+    assert pick.precondition == And((Atom(f("(at b2 r3)")), Atom(f("(at-robby r3)")),
+                                     Not(Atom(f("(carry b1)"))), Not(Atom(f("(carry b2)")))))
+    drop = task.action_by_signature("(drop-all r2)")
+    assert drop.precondition == Or((Atom(f("(carry b1)")), Atom(f("(carry b2)"))))
+    assert drop.effect.conditional == (
+        ConditionalEffect(Atom(f("(carry b1)")), Effect(add=(f("(at b1 r2)"),),
+                                                        delete=(f("(carry b1)"),))),
+        ConditionalEffect(Atom(f("(carry b2)")), Effect(add=(f("(at b2 r2)"),),
+                                                        delete=(f("(carry b2)"),))),
+    )
+    move = task.action_by_signature("(move r1 r2)")
+    assert move.effect.conditional == (
+        ConditionalEffect(Not(Atom(f("(lit r2)"))), Effect(add=(f("(lit r2)"),))),)
+    switch = task.action_by_signature("(switch r1)")
+    assert switch.precondition == Or((Not(Atom(f("(lit r1)"))), Atom(f("(at-robby r1)"))))
+    # (lit r4) can never hold: the implication is vacuously true, the delete is dropped.
+    switch4 = task.action_by_signature("(switch r4)")
+    assert switch4.precondition == TRUE and switch4.effect == Effect()
+    assert task.goal == And((Atom(f("(painted r3)")), Atom(f("(at b2 r1)"))))
+    assert {task.facts[i] for i in task.init_facts} == {"(at-robby r1)", "(at b1 r1)",
+                                                        "(at b2 r3)", "(lit r1)"}
+
+
+def test_paths_and_text_both_load(tmp_path: Path, arm_domain: str, arm_problem: str) -> None:
+    d = tmp_path / "d.pddl"
+    d.write_text(arm_domain)
+    p = tmp_path / "p.pddl"
+    p.write_text(arm_problem)
+    a, b = load_task(d, str(p)), load_task(arm_domain, arm_problem)
+    assert (a.facts, a.fluents, a.actions, a.processes) == (b.facts, b.fluents, b.actions,
+                                                            b.processes)
+
+
+def test_undefined_static_fluent_comparison_is_false() -> None:
+    domain = ROOMS.replace("(:predicates", "(:functions (cost ?r - room))\n  (:predicates").replace(
+        ":precondition (at-robby ?r) :effect", ":precondition (and (at-robby ?r) "
+        "(< (cost ?r) 5)) :effect")
+    problem = ROOMS_PROBLEM.replace("(painted r1)", "(painted r1) (= (cost r2) 1)")
+    task = load_task(domain, problem)
+    assert [a.signature for a in task.actions if a.name == "paint"] == ["(paint r2)"]
+    assert task.fluents == ()  # (cost r2) is static: folded into the condition, which is true
