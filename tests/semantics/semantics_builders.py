@@ -36,14 +36,18 @@ def c(v: float) -> Const:
     return Const(v)
 
 
-def wrap_events() -> tuple[GroundAction, ...]:
-    """back-to-zero (>= 360 -> 0) and back-to-360 (< 0 -> + 360) on the angle."""
+def wrap_events(low: Comparison | None = None) -> tuple[GroundAction, ...]:
+    """back-to-zero (>= 360: -360) and back-to-360 (<= -0.01: +360) on the angle.
+
+    ``low`` replaces back-to-360's precondition (``(< angle 0)`` makes VAL's slack bounce).
+    """
     to_zero = GroundAction(
         "back-to-zero", ("L2", "z-axis"), Comparison(">=", f(ANGLE), c(360.0)),
         Effect(numeric=(NumericEffect("decrease", ANGLE, c(360.0)),)), kind="event",
     )
     to_360 = GroundAction(
-        "back-to-360", ("L2", "z-axis"), Comparison("<", f(ANGLE), c(0.0)),
+        "back-to-360", ("L2", "z-axis"),
+        low if low is not None else Comparison("<=", f(ANGLE), c(-0.01)),
         Effect(numeric=(NumericEffect("increase", ANGLE, c(360.0)),)), kind="event",
     )
     return to_zero, to_360
@@ -63,7 +67,8 @@ def rotation_actions() -> tuple[GroundAction, ...]:
 
 
 def ng_task(angle0: float = 355.0, speed: float = 10.0, goal=None,
-            extra_events: tuple[GroundAction, ...] = ()) -> Task:
+            extra_events: tuple[GroundAction, ...] = (),
+            wraps: tuple[GroundAction, ...] | None = None) -> Task:
     """NG: the robot rotates the angle at a constant speed; it wraps at 360."""
     move = GroundProcess(
         "move-increase", ("L2", "z-axis"), Atom(MOVING),
@@ -71,7 +76,8 @@ def ng_task(angle0: float = 355.0, speed: float = 10.0, goal=None,
     )
     return Task(
         "ng", "p", FACTS, FLUENTS, frozenset(), (angle0, speed, 0.0, 0.0),
-        goal if goal is not None else TRUE, rotation_actions(), wrap_events() + extra_events,
+        goal if goal is not None else TRUE, rotation_actions(),
+        (wrap_events() if wraps is None else wraps) + extra_events,
         (move,),
     )
 

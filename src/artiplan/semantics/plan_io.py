@@ -26,6 +26,7 @@ from artiplan.semantics.plan import Plan, TimedAction, TimedEvent
 
 _NUM = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
 _TIME = re.compile(rf"\s*({_NUM})\s*:\s*")
+_NUMBER = re.compile(rf"\s*{_NUM}\s*")
 _ACTION = re.compile(r"\(\s*([^()\s;]+)((?:\s+[^()\s;]+)*)\s*\)\s*")
 _DURATION = re.compile(rf"\[\s*({_NUM})\s*\]\s*")
 _WAITING = re.compile(rf"-+\s*waiting\s*-+\s*(?:\[\s*({_NUM})\s*\])?\s*", re.IGNORECASE)
@@ -83,6 +84,8 @@ def _parse_line(line: str, lineno: int, filename: str) -> TimedAction | float:
 
     m = _TIME.match(line)
     if not m:
+        if mn := _NUMBER.match(line):
+            raise error(mn.end(), "':' after the time")
         raise error(len(line) - len(line.lstrip()), "a time 't:' (VAL format 't: (action args)')")
     t = float(m.group(1))
     if t < 0:

@@ -1,0 +1,84 @@
+"""``artiplan validate`` and ``artiplan simulate``: exit codes, messages, files."""
+
+from __future__ import annotations
+
+import csv
+from pathlib import Path
+
+import pytest
+
+from artiplan.cli import main
+
+DOMAIN = """
+(define (domain tank)
+  (:requirements :strips :numeric-fluents :time)
+  (:predicates (filling))
+  (:functions (level) (flow-rate))
+  (:action open :parameters () :precondition (not (filling)) :effect (filling))
+  (:action close :parameters () :precondition (filling) :effect (not (filling)))
+  (:process fill :parameters () :precondition (filling)
+    :effect (increase (level) (* #t (flow-rate))))
+  (:event overflow :parameters () :precondition (>= (level) 10)
+    :effect (and (decrease (level) 5) (increase (flow-rate) 1))))
+"""
+PROBLEM = """
+(define (problem t1) (:domain tank)
+  (:init (= (level) 7) (= (flow-rate) 2))
+  (:goal (> (level) 6.5)))
+"""
+
+
+@pytest.fixture
+def files(tmp_path: Path) -> tuple[Path, Path]:
+    (tmp_path / "d.pddl").write_text(DOMAIN)
+    (tmp_path / "p.pddl").write_text(PROBLEM)
+    return tmp_path / "d.pddl", tmp_path / "p.pddl"
+
+
+def _plan(tmp_path: Path, text: str) -> Path:
+    path = tmp_path / "plan.txt"
+    path.write_text(text)
+    return path
+
+
+def test_valid_plan_exits_0_and_writes_the_trajectory(files, tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
+    plan = _plan(tmp_path, "0: (open)\n4.0: (close)\n")
+    out = tmp_path / "t.csv"
+    assert main(["validate", *map(str, files), str(plan), "--trajectory", str(out), "-v"]) == 0
+    text = capsys.readouterr().out
+    assert "; 1.5: (overflow)" in text and "Plan valid" in text
+    rows = list(csv.reader(out.open()))
+    assert rows[0] == ["time", "happening", "level", "flow-rate"]
+    assert [r[1] for r in rows[1:]] == ["init", "(open)", "(overflow)", "(overflow)", "(close)"]
+
+
+def test_invalid_plan_exits_4_with_the_first_reason(files, tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
+    plan = _plan(tmp_path, "0: (open)\n1.6: (close)\n")
+    assert main(["validate", *map(str, files), str(plan)]) == 4
+    out = capsys.readouterr().out
+    assert "goal" in out and "(level) = 5.300000" in out
+
+
+def test_bad_operator_exits_4_with_its_line(files, tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
+    plan = _plan(tmp_path, "; a comment\n0: (open)\n1.0: (drain)\n")
+    assert main(["validate", *map(str, files), str(plan)]) == 4
+    out = capsys.readouterr().out
+    assert "bad operator (drain)" in out and "plan line 3" in out
+
+
+def test_malformed_plan_exits_3_with_a_location(files, tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
+    plan = _plan(tmp_path, "0: (open)\n1.0 (close)\n")
+    assert main(["validate", *map(str, files), str(plan)]) == 3
+    assert f"{plan}:2:5:" in capsys.readouterr().err
+
+
+def test_simulate_prints_events_and_draws(files, tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
+    plan = _plan(tmp_path, "0: (open)\n4.0: (close)\n")
+    png, out = tmp_path / "t.png", tmp_path / "t.csv"
+    args = ["simulate", *map(str, files), str(plan), "--plot", str(png)]
+    assert main([*args, "--trajectory", str(out), "--sample", "0.5"]) == 0
+    text = capsys.readouterr().out
+    assert text.splitlines()[:3] == ["0.0: (open)", "; 1.5: (overflow)", "; 3.166667: (overflow)"]
+    assert png.stat().st_size > 10_000
+    samples = [r for r in csv.reader(out.open()) if r[1] == ""]
+    assert len(samples) == 9  # 0, 0.5, ..., 4.0

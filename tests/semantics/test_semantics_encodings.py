@@ -1,0 +1,113 @@
+"""The validator on PDDL text: a hand-written domain, and the project's UCM / UACM encodings.
+
+Expected values are worked out by hand in each test from the model's rates.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from artiplan.encoding import EncodingOptions, domain_pddl, problem_pddl
+from artiplan.model import ArticulatedObject, Configuration
+from artiplan.pddl import load_task
+from artiplan.semantics import validate
+from artiplan.semantics.plan_io import parse_plan
+
+TANK = """
+(define (domain tank)
+  (:requirements :strips :numeric-fluents :time)
+  (:predicates (filling))
+  (:functions (level) (flow-rate))
+  (:action open :parameters () :precondition (not (filling)) :effect (filling))
+  (:action close :parameters () :precondition (filling) :effect (not (filling)))
+  (:process fill :parameters () :precondition (filling)
+    :effect (increase (level) (* #t (flow-rate))))
+  (:event overflow :parameters () :precondition (>= (level) 10)
+    :effect (and (decrease (level) 5) (increase (flow-rate) 1))))
+"""
+TANK_PROBLEM = """
+(define (problem t1) (:domain tank)
+  (:init (= (level) 7) (= (flow-rate) 2))
+  (:goal (> (level) 6.5)))
+"""
+
+
+def test_hand_written_domain_events_change_rates() -> None:
+    task = load_task(TANK, TANK_PROBLEM)
+    # 7 at 2/s: 10 at t = 1.5 -> 5, rate 3; 10 again at 1.5 + 5/3 -> 5, rate 4; at 4: 8.
+    plan = parse_plan("0: (open)\n4.0: (close)\n")
+    report = validate(task, plan)
+    assert report.valid, report.reason
+    times = [e.time for e in report.events]
+    assert times == pytest.approx([1.5, 1.5 + 5 / 3], abs=1e-9)
+    assert report.trajectory is not None
+    assert report.trajectory.value("(level)", 4.0) == pytest.approx(5 + 4 * (4 - 1.5 - 5 / 3))
+    bad = validate(task, parse_plan("0: (open)\n1.6: (close)\n"))  # 5.3 at 1.6
+    assert not bad.valid and bad.values == {"(level)": pytest.approx(5.3)}
+
+
+def _encoded(model: str, goal: str, **opts: float) -> tuple[str, str]:
+    obj = ArticulatedObject(3)
+    init = Configuration((0.0, 350.0, 100.0), (0.0, 90.0, 120.0))
+    options = EncodingOptions(model, **opts)  # type: ignore[arg-type]
+    problem = problem_pddl(obj, init, init, options)
+    problem = problem[: problem.index("(:goal")] + f"(:goal (and {goal}))\n)\n"
+    return domain_pddl(obj, options), problem
+
+
+def test_ucm_rotation_wrap_and_gravity_by_hand() -> None:
+    # speed-g 0.5. Holding L2 (0..2 s) stops L2's fall; L3 falls at 0.5 alone, then at 1.0
+    # (its own 0.5 + L2's propagated 0.5). L2 xy: 350 + 10 t wraps at t = 1.
+    domain, problem = _encoded(
+        "ucm", "(> (angle L3 xy-axes) 115) (< (angle L3 z-axis) 117.5)", speed_g=0.5
+    )
+    task = load_task(domain, problem)
+    plan = "0: (start-increase L1 L2 xy-axes)\n2.0: (stop-increase L1 L2 xy-axes)\n"
+    report = validate(task, parse_plan(plan + "4.0: (observe)\n"))
+    assert report.valid, report.reason
+    assert [(e.name, e.args) for e in report.events] == [("back-to-zero", ("L2", "xy-axes"))]
+    assert report.events[0].time == pytest.approx(1.0, abs=1e-9)
+    traj = report.trajectory
+    assert traj is not None
+    assert traj.value("angle(L2,z-axis)", 2.0) == pytest.approx(90.0)
+    assert traj.value("angle(L3,z-axis)", 2.0) == pytest.approx(119.0)
+    assert traj.value("angle(L2,z-axis)", 4.0) == pytest.approx(89.0)
+    assert traj.value("angle(L3,z-axis)", 4.0) == pytest.approx(117.0)
+    assert traj.value("angle(L2,xy-axes)", 4.0) == pytest.approx(10.0)
+    early = validate(task, parse_plan(plan + "3.0: (observe)\n"))  # L3 z still 118
+    assert not early.valid and early.kind == "goal"
+    assert early.values == {"(angle L3 z-axis)": pytest.approx(118.0)}
+    assert traj.value("angle(L3,xy-axes)", 3.0) == pytest.approx(120.0)  # stopped at 2 s
+
+
+def test_uacm_quadratic_fall_and_exact_event_cascade() -> None:
+    # acceleration 2: at t = 0 gravity starts on L2 and L3 (speeds from 0). L2 z = 90 - t^2,
+    # L3 z = 120 - 2 t^2 (its own fall plus L2's). L3 reaches 0 at sqrt(60): its gravity stops,
+    # but L2's keeps carrying it down: -(t^2 - 60) reaches -0.01 at sqrt(60.01), where L3
+    # wraps to 359.99 and, above 180.01, starts falling the other way from speed 0.
+    domain, problem = _encoded("uacm", "(> (angle L2 z-axis) 80.5)", acceleration=2.0)
+    task = load_task(domain, problem)
+    report = validate(task, parse_plan("3.0: (observe)\n"))
+    assert report.valid, report.reason
+    traj = report.trajectory
+    assert traj is not None
+    assert traj.value("angle(L2,z-axis)", 3.0) == pytest.approx(81.0, abs=1e-9)
+    assert traj.value("angle(L3,z-axis)", 3.0) == pytest.approx(102.0, abs=1e-9)
+
+    long = validate(task, parse_plan("7.8: (observe)\n"))
+    t1, t2 = math.sqrt(60.0), math.sqrt(60.01)
+    fired = [(e.name, e.args[0], e.time) for e in long.events if e.args[0] == "L3"]
+    assert [(n, a) for n, a, _ in fired] == [
+        ("start-gravity-decrease", "L3"),
+        ("stop-gravity-decrease", "L3"),
+        ("back-to-360", "L3"),
+        ("start-gravity-increase", "L3"),
+    ]
+    assert [t for *_, t in fired] == pytest.approx([0.0, t1, t2, t2], abs=1e-9)
+    assert abs(fired[1][2] - t1) < 1e-9 and abs(fired[2][2] - t2) < 1e-9
+    t = 7.8
+    expected = 359.99 + (t - t2) ** 2 - (t**2 - t2**2)
+    assert long.trajectory is not None
+    assert long.trajectory.value("angle(L3,z-axis)", t) == pytest.approx(expected, abs=1e-9)
