@@ -1,0 +1,115 @@
+"""Run artiplan's planner in-process over a suite folder (``artiplan suite DIR --seed 0``).
+
+Usage:
+    .venv/bin/python benchmarks/planner_suite.py SUITE_DIR [--time-limit 10] [--jsonl out.jsonl]
+        [--only ng,ucm-0.1] [--process N]
+
+Per problem: status, planning time after parsing (in-process, ``search`` + ``compile`` +
+``validate``), time with loading, plan length and makespan. Per (model, size): solved / proven
+unsolvable / unknown, median / max / total time. With ``--process N``, also time N problems
+per model as separate ``artiplan plan`` processes (process start included).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import re
+import statistics
+import subprocess
+import sys
+import time
+from pathlib import Path
+
+from artiplan.pddl import load_task
+from artiplan.search.api import PlanStatus, plan_task
+
+
+def problems(root: Path, only: set[str] | None) -> list[tuple[str, int, Path, Path]]:
+    out = []
+    for model_dir in sorted(p for p in root.iterdir() if p.is_dir()):
+        if only and model_dir.name not in only:
+            continue
+        for prob in sorted(model_dir.glob("p*.pddl")):
+            m = re.match(r"p(\d+)-\d+", prob.stem)
+            size = int(m.group(1)) if m else 0
+            out.append((model_dir.name, size, model_dir / "domain.pddl", prob))
+    return out
+
+
+def run_one(domain: Path, prob: Path, limit: float) -> dict[str, object]:
+    t0 = time.perf_counter()
+    task = load_task(str(domain), str(prob))
+    load_s = time.perf_counter() - t0
+    t1 = time.perf_counter()
+    res = plan_task(task, time_limit=limit)
+    plan_s = time.perf_counter() - t1
+    return {
+        "problem": str(prob), "status": res.status.value, "plan_s": plan_s,
+        "with_load_s": plan_s + load_s, "length": res.stats.get("plan_length"),
+        "makespan": res.stats.get("makespan"), "expanded": res.stats.get("expanded"),
+        "message": res.message,
+    }
+
+
+def process_time(domain: Path, prob: Path, limit: float) -> float:
+    t0 = time.perf_counter()
+    subprocess.run([sys.executable, "-m", "artiplan", "plan", str(domain), str(prob),
+                    "--time-limit", str(limit)], capture_output=True, check=False)
+    return time.perf_counter() - t0
+
+
+def summary(rows: list[dict[str, object]]) -> str:
+    cells: dict[tuple[str, int], list[dict[str, object]]] = {}
+    for r in rows:
+        cells.setdefault((str(r["model"]), int(r["size"])), []).append(r)  # type: ignore[arg-type]
+    lines = ["| model | size | solved | unsolvable | unknown | median s | max s | total s |",
+             "|---|---|---|---|---|---|---|---|"]
+    for (model, size), rs in sorted(cells.items()):
+        times = [float(r["plan_s"]) for r in rs]  # type: ignore[arg-type]
+        solved = sum(r["status"] == PlanStatus.SOLVED.value for r in rs)
+        unsolv = sum(r["status"] == PlanStatus.UNSOLVABLE_PROVEN.value for r in rs)
+        lines.append(f"| {model} | {size} | {solved} | {unsolv} | {len(rs) - solved - unsolv} "
+                     f"| {statistics.median(times):.3f} | {max(times):.3f} | {sum(times):.2f} |")
+    all_t = [float(r["plan_s"]) for r in rows]  # type: ignore[arg-type]
+    solved = sum(r["status"] == "solved" for r in rows)
+    lines.append(f"\nall: {len(rows)} problems, solved {solved}, "
+                 f"median {statistics.median(all_t):.3f} s, max {max(all_t):.3f} s, "
+                 f"total {sum(all_t):.2f} s")
+    return "\n".join(lines)
+
+
+def main() -> int:
+    ap = argparse.ArgumentParser()
+    ap.add_argument("suite", type=Path)
+    ap.add_argument("--time-limit", type=float, default=10.0)
+    ap.add_argument("--jsonl", type=Path)
+    ap.add_argument("--only", default="")
+    ap.add_argument("--process", type=int, default=0)
+    args = ap.parse_args()
+    rows = []
+    only = set(args.only.split(",")) if args.only else None
+    for model, size, domain, prob in problems(args.suite, only):
+        row = {"model": model, "size": size, **run_one(domain, prob, args.time_limit)}
+        rows.append(row)
+        print(f"{model:9s} {prob.stem:8s} {row['status']:10s} {row['plan_s']:.3f}s "
+              f"len={row['length']} mk={row['makespan']} exp={row['expanded']} {row['message']}",
+              file=sys.stderr, flush=True)
+    if args.jsonl:
+        with args.jsonl.open("w") as fh:
+            for r in rows:
+                fh.write(json.dumps({"schema": 1, **r}) + "\n")
+    print(summary(rows))
+    if args.process:
+        by_model: dict[str, list[float]] = {}
+        for model, _size, domain, prob in problems(args.suite, only):
+            if len(by_model.setdefault(model, [])) < args.process:
+                by_model[model].append(process_time(domain, prob, args.time_limit))
+        for model, ts in sorted(by_model.items()):
+            print(f"process start included, {model}: median {statistics.median(ts):.3f} s "
+                  f"over {len(ts)} problems")
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

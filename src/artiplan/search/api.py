@@ -1,0 +1,202 @@
+"""artiplan's planner: ``plan(domain, problem) -> PlanResult``.
+
+The pipeline, each phase timed: load (parse + ground) -> compile -> prove unsolvable? ->
+search (greedy best-first in exact time, :mod:`artiplan.search.engine`) -> extract the timed plan
+-> validate it with :func:`artiplan.semantics.validate` (VAL's rules). A plan the validator
+rejects is never returned as solved: that is a bug, reported as ``ERROR`` with the reason.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+from enum import Enum
+from pathlib import Path
+from typing import Any
+
+from artiplan.errors import ExitCode, UsageError
+from artiplan.pddl.task import Task
+from artiplan.search.compiled import CompiledTask, Slack, compile_task
+from artiplan.search.dynamics import Dynamics, DynamicsConfig, ZenoError
+from artiplan.search.engine import Search, SearchConfig, SearchOutcome, initial_node
+from artiplan.search.heuristic import HeuristicConfig, RateHeuristic
+from artiplan.search.limits import LimitReached, Limits
+from artiplan.search.reachability import prove_unsolvable
+from artiplan.semantics.plan import Plan, TimedAction, TimedEvent
+
+
+class PlanStatus(Enum):
+    """How a planning call ended."""
+
+    SOLVED = "solved"
+    UNSOLVABLE_PROVEN = "unsolvable"
+    NO_PLAN = "no-plan"
+    TIMEOUT = "timeout"
+    MEMOUT = "memout"
+    ERROR = "error"
+
+    @property
+    def exit_code(self) -> ExitCode:
+        """The command-line exit code (shared/docs/conventions.md)."""
+        return _EXIT[self]
+
+
+_EXIT = {
+    PlanStatus.SOLVED: ExitCode.OK,
+    PlanStatus.UNSOLVABLE_PROVEN: ExitCode.UNSOLVABLE,
+    PlanStatus.NO_PLAN: ExitCode.NO_PLAN,
+    PlanStatus.TIMEOUT: ExitCode.TIME_LIMIT,
+    PlanStatus.MEMOUT: ExitCode.MEMORY_LIMIT,
+    PlanStatus.ERROR: ExitCode.INTERNAL,
+}
+
+
+@dataclass
+class PlanResult:
+    """The outcome of planning.
+
+    Attributes:
+        status: How the call ended.
+        plan: The validated plan (only when ``SOLVED``), events included as predicted.
+        trajectory: The validator's trajectory of the plan (``semantics.Trajectory``), if solved.
+        stats: expanded, generated, evaluated, duplicates, events, fallback_steps (counts);
+            parse_s, ground_s, compile_s, heuristic_s, search_s, validate_s, total_s (seconds);
+            plan_length, makespan [s].
+        message: Why, in one line, when not solved (the proof, the limit, the error).
+    """
+
+    status: PlanStatus
+    plan: Plan | None = None
+    trajectory: Any = None
+    stats: dict[str, Any] = field(default_factory=dict)
+    message: str = ""
+
+
+OPTIONS = {
+    "epsilon": "separation of successive actions [s] (default 0.001)",
+    "time_weight": "heuristic cost of one second, in actions (default 0.1)",
+    "goal_margin": "time [s] a goal wait runs on past the goal boundary (default 0.05)",
+    "value_precision": "decimals of values in duplicate detection (default 6)",
+    "fallback_step": "step [s] for non-polynomial dynamics (default 0.1)",
+    "validate": "check the plan with artiplan.semantics.validate (default True)",
+}
+
+
+def plan(
+    domain: str | Path, problem: str | Path, *, time_limit: float | None = None,
+    memory_limit: float | None = None, **options: Any,
+) -> PlanResult:
+    """Plan for a PDDL+ domain and problem (paths or PDDL text); see :func:`plan_task`.
+
+    ``time_limit`` [s] covers parsing and grounding too; ``memory_limit`` [MB].
+    """
+    from artiplan.pddl import load_task
+
+    t0 = time.perf_counter()
+    task = load_task(str(domain) if isinstance(domain, Path) else domain,
+                     str(problem) if isinstance(problem, Path) else problem)
+    load_s = time.perf_counter() - t0
+    remaining = None if time_limit is None else max(0.0, time_limit - load_s)
+    result = plan_task(task, time_limit=remaining, memory_limit=memory_limit, **options)
+    result.stats["ground_s"] = task.stats.seconds
+    result.stats["parse_s"] = max(0.0, load_s - task.stats.seconds)
+    result.stats["total_s"] = result.stats.get("total_s", 0.0) + load_s
+    return result
+
+
+def plan_task(
+    task: Task, *, time_limit: float | None = None, memory_limit: float | None = None,
+    **options: Any,
+) -> PlanResult:
+    """Plan for a grounded task under the limits (``time_limit`` [s], ``memory_limit`` [MB])."""
+    unknown = set(options) - set(OPTIONS)
+    if unknown:
+        raise UsageError(f"unknown planner option(s) {sorted(unknown)}; valid: {sorted(OPTIONS)}")
+    limits = Limits(time_limit, memory_limit)
+    t0 = time.perf_counter()
+    stats: dict[str, Any] = {}
+    try:
+        result = _plan(task, limits, stats, options)
+    except LimitReached as exc:
+        status = PlanStatus.TIMEOUT if exc.kind == "time" else PlanStatus.MEMOUT
+        result = PlanResult(status, message=str(exc))
+    except MemoryError:
+        result = PlanResult(PlanStatus.MEMOUT, message="out of memory (MemoryError)")
+    except ZenoError as exc:
+        result = PlanResult(PlanStatus.ERROR, message=str(exc))
+    result.stats = {**stats, **result.stats, "total_s": time.perf_counter() - t0}
+    return result
+
+
+def _plan(task: Task, limits: Limits, stats: dict[str, Any], options: dict[str, Any]) -> PlanResult:
+    t = time.perf_counter()
+    ct = compile_task(task, Slack())
+    dyn = Dynamics(ct, DynamicsConfig(fallback_step=float(options.get("fallback_step", 0.1))))
+    heur = RateHeuristic(ct, HeuristicConfig(time_weight=float(options.get("time_weight", 0.1))))
+    stats["compile_s"] = time.perf_counter() - t
+    reason = prove_unsolvable(task)
+    if reason is not None:
+        return PlanResult(PlanStatus.UNSOLVABLE_PROVEN, message=reason)
+    config = SearchConfig(
+        epsilon=float(options.get("epsilon", 0.001)),
+        goal_margin=float(options.get("goal_margin", 0.05)),
+        value_precision=int(options.get("value_precision", 6)),
+    )
+    search = Search(ct, dyn, heur, config, limits.check)
+    t = time.perf_counter()
+    try:
+        outcome = search.run(initial_node(ct, dyn))
+    finally:
+        stats.update(search.stats)
+        stats.update(dyn.counters)
+        stats["search_s"] = time.perf_counter() - t
+        stats["heuristic_s"] = heur.seconds
+    if outcome.goal is None:
+        return PlanResult(PlanStatus.NO_PLAN, message="search space exhausted without a plan "
+                          "(not a proof: waits stop only at critical times)")
+    result = extract_plan(ct, outcome)
+    stats["plan_length"] = len(result.actions)
+    stats["makespan"] = result.makespan
+    if not options.get("validate", True):
+        return PlanResult(PlanStatus.SOLVED, result, None, {"validated": False})
+    return _validated(task, result, stats)
+
+
+def _validated(task: Task, result: Plan, stats: dict[str, Any]) -> PlanResult:
+    from artiplan.semantics import validate
+
+    t = time.perf_counter()
+    report = validate(task, result)
+    stats["validate_s"] = time.perf_counter() - t
+    stats["validated"] = report.valid
+    if not report.valid:
+        return PlanResult(PlanStatus.ERROR, result, report.trajectory,
+                          message=f"internal error: the validator rejects the plan found: "
+                          f"{report.reason}")
+    return PlanResult(PlanStatus.SOLVED, result, report.trajectory)
+
+
+def extract_plan(ct: CompiledTask, outcome: SearchOutcome) -> Plan:
+    """The timed plan (actions and predicted events) leading to the goal node."""
+    assert outcome.goal is not None
+    path = []
+    i = outcome.goal
+    while i >= 0:
+        path.append(outcome.nodes[i])
+        i = outcome.nodes[i].parent
+    path.reverse()
+    actions: list[TimedAction] = []
+    events: list[TimedEvent] = []
+    for node in path:
+        for k, (t, e) in enumerate(node.events):
+            ev = ct.events[e]
+            after = node.op[0] == "a" and k >= node.after
+            events.append(TimedEvent(round(t, 6), ev.name, ev.args, after_actions=after))
+        if node.op[0] == "a":
+            a = ct.actions[node.op[1]]
+            actions.append(TimedAction(round(node.time, 6), a.name, a.args))
+    if outcome.closing is not None:
+        t, i = outcome.closing
+        a = ct.actions[i]
+        actions.append(TimedAction(round(t, 6), a.name, a.args))
+    return Plan(tuple(actions), tuple(events))

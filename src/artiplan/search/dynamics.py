@@ -1,0 +1,276 @@
+"""Letting time pass in the search: events at their exact times, waits to critical times.
+
+Rules (VAL's, as the planner needs them):
+
+- Processes run while their precondition holds; which ones run just after a time point is decided
+  on the *right limit* (the values a moment ``probe`` later), so a process whose precondition
+  becomes true as an angle leaves a boundary starts at once.
+- An event fires at the earliest time its precondition becomes true: the exact root of the
+  comparison, found with the polynomial flow (:mod:`artiplan.search.flow`). Events cascade to a
+  fixpoint; each event fires at most once per time point.
+- Waits end on a grid of ``grid`` seconds (1e-6: the 6 decimals of a plan file), at least one grid
+  step after the root that ends them, so the printed plan is the plan that was searched and every
+  comparison that became true holds with a margin.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass, field
+
+from artiplan.search.compiled import CompiledTask, CondFn
+from artiplan.search.flow import Flow, advance_values, comparison_poly, compute_flow, first_root
+
+Values = tuple[float, ...]
+EventLog = list[tuple[float, int]]
+
+
+class ZenoError(RuntimeError):
+    """Events keep firing without time passing (a modelling error of the task)."""
+
+
+@dataclass(frozen=True)
+class DynamicsConfig:
+    """Numeric settings of the search's simulator.
+
+    Attributes:
+        grid: Happening times are multiples of this [s] (plan files print 6 decimals).
+        probe: Look-ahead [s] deciding what holds just after a time point.
+        fallback_step: Longest step [s] when rates are not polynomial (counted in the stats).
+        max_cascade: Most rounds of events at one time point before declaring a Zeno loop.
+    """
+
+    grid: float = 1e-6
+    probe: float = 1e-7
+    fallback_step: float = 0.1
+    max_cascade: int = 200
+
+
+def grid_after(t: float, grid: float) -> float:
+    """The first grid time at least one grid step after ``t`` [s]."""
+    return round(math.ceil((t + grid) / grid - 1e-6) * grid, 9)
+
+
+@dataclass
+class Dynamics:
+    """The search's simulator over a compiled task, with caches and counters."""
+
+    ct: CompiledTask
+    config: DynamicsConfig = field(default_factory=DynamicsConfig)
+    counters: dict[str, int] = field(default_factory=lambda: {"fallback_steps": 0, "events": 0})
+
+    def __post_init__(self) -> None:
+        self._proc_buckets, self._proc_always = _buckets(self.ct.processes)
+        self._event_buckets, self._event_always = _buckets(self.ct.events)
+        self._const_rates = [
+            all(lin is not None and not lin[0] for _, lin, _ in p.rates) for p in self.ct.processes
+        ]
+        self._flow_cache: dict[tuple[int, ...], Flow] = {}
+        self._comp_cache: dict[tuple[frozenset[int], str], tuple[int, ...]] = {}
+
+    # ------------------------------------------------------------------ processes and flows
+    def active(self, facts: int, values: Values) -> tuple[int, ...]:
+        """Indices of the processes whose precondition holds."""
+        procs = self.ct.processes
+        out = [
+            i for i in _candidates(facts, self._proc_buckets, self._proc_always)
+            if not facts & procs[i].forb and procs[i].pre(facts, values)
+        ]
+        out.sort()
+        return tuple(out)
+
+    def _flow_of(self, active: tuple[int, ...], values: Values) -> Flow:
+        cached = self._flow_cache.get(active)
+        if cached is not None:
+            return cached
+        flow = compute_flow(self.ct.processes, active, values, self.config.fallback_step)
+        if all(self._const_rates[i] for i in active):
+            self._flow_cache[active] = flow
+        return flow
+
+    def flow(self, facts: int, values: Values) -> tuple[tuple[int, ...], Flow]:
+        """Active processes and their flow just after now (right limit)."""
+        act = self.active(facts, values)
+        flow = self._flow_of(act, values)
+        if flow.moving:
+            ahead = self.active(facts, advance_values(values, flow, self.config.probe))
+            if ahead != act:
+                act, flow = ahead, self._flow_of(ahead, values)
+        return act, flow
+
+    def comps_for(self, flow: Flow, kind: str) -> tuple[int, ...]:
+        """Comparisons of ``kind`` ('watched' or 'dynamic') that read a moving fluent."""
+        key = (frozenset(flow.coeffs), kind)
+        found = self._comp_cache.get(key)
+        if found is None:
+            pool = self.ct.watched if kind == "watched" else self.ct.dynamic
+            ids: set[int] = set()
+            for f in flow.coeffs:
+                ids.update(c for c in self.ct.fluent_comps.get(f, ()) if c in pool)
+            found = self._comp_cache[key] = tuple(sorted(ids))
+        return found
+
+    def next_change(
+        self, values: Values, flow: Flow, comps: Iterable[int], horizon: float = math.inf
+    ) -> float | None:
+        """Earliest dt > 0 [s] at which one of ``comps`` may change truth value."""
+        best = horizon
+        found = False
+        items = self.ct.comps.items
+        for cid in comps:
+            poly = comparison_poly(items[cid], values, flow)
+            if poly is None:  # not a polynomial: a documented fallback step
+                if self.config.fallback_step < best:
+                    best, found = self.config.fallback_step, True
+                    self.counters["fallback_steps"] += 1
+                continue
+            root = first_root(poly, best)
+            if root is not None:
+                best, found = root, True
+        if flow.valid_for < best:
+            self.counters["fallback_steps"] += 1
+            return flow.valid_for
+        return best if found else None
+
+    # ------------------------------------------------------------------ events and time
+    def settle(
+        self, t: float, facts: int, values: Values, log: EventLog, probe: bool = True
+    ) -> tuple[int, Values]:
+        """Fire every triggered event at time ``t`` [s], cascading to a fixpoint."""
+        events = self.ct.events
+        fired: set[int] = set()
+        for _ in range(self.config.max_cascade):
+            ahead = values
+            if probe:
+                _, flow = self.flow(facts, values)
+                if flow.moving:
+                    ahead = advance_values(values, flow, self.config.probe)
+            triggered = [
+                i for i in _candidates(facts, self._event_buckets, self._event_always)
+                if i not in fired and not facts & events[i].forb
+                and (events[i].pre(facts, values) or (ahead is not values
+                                                      and events[i].pre(facts, ahead)))
+            ]
+            if not triggered:
+                return facts, values
+            for i in sorted(triggered):
+                facts, values = events[i].effect(facts, values)
+                fired.add(i)
+                log.append((t, i))
+                self.counters["events"] += 1
+        raise ZenoError(f"events keep firing at t={t:.6f}: the task has an event loop")
+
+    def advance(
+        self, t: float, facts: int, values: Values, until: float, log: EventLog
+    ) -> tuple[int, Values]:
+        """Let time pass from ``t`` to ``until`` [s]; events fire at their exact times."""
+        for _ in range(1_000_000):
+            if until - t <= 0.0:
+                return facts, values
+            _, flow = self.flow(facts, values)
+            if not flow.moving:
+                return facts, values
+            dt = self.next_change(values, flow, self.comps_for(flow, "dynamic"), until - t)
+            if dt is None or t + dt >= until:
+                values = advance_values(values, flow, until - t)
+                return self.settle(until, facts, values, log, probe=False)
+            values = advance_values(values, flow, dt)
+            t += dt
+            facts, values = self.settle(t, facts, values, log)
+        raise ZenoError(f"time cannot pass beyond t={t:.6f}")
+
+    def wait_next(
+        self, t: float, facts: int, values: Values, log: EventLog
+    ) -> tuple[float, int, Values] | None:
+        """Wait until just after the next time a watched condition may change truth value."""
+        _, flow = self.flow(facts, values)
+        if not flow.moving:
+            return None
+        dt = self.next_change(values, flow, self.comps_for(flow, "watched"))
+        if dt is None:
+            return None
+        until = grid_after(t + dt, self.config.grid)
+        facts, values = self.advance(t, facts, values, until, log)
+        return until, facts, values
+
+    def wait_until(
+        self, t: float, facts: int, values: Values, cond: CondFn, cond_comps: frozenset[int],
+        log: EventLog, max_steps: int = 64, margin: float = 0.0,
+    ) -> tuple[float, int, Values] | None:
+        """Wait until ``cond`` holds (then ``margin`` [s] more if it keeps holding), or None.
+
+        Stops at the first change of the dynamics or of ``cond``'s comparisons; gives up after
+        ``max_steps`` such changes or when nothing moves any more.
+        """
+        for _ in range(max_steps):
+            _, flow = self.flow(facts, values)
+            if not flow.moving:
+                return None
+            watch = self._watch(flow, cond_comps)
+            dt = self.next_change(values, flow, watch)
+            if dt is None:
+                return None
+            t_next = grid_after(t + dt, self.config.grid)
+            facts, values = self.advance(t, facts, values, t_next, log)
+            t = t_next
+            if cond(facts, values):
+                return self._with_margin(t, facts, values, cond, cond_comps, log, margin)
+        return None
+
+    def _watch(self, flow: Flow, cond_comps: frozenset[int]) -> tuple[int, ...]:
+        moving = flow.coeffs
+        own = [c for c in cond_comps if self.ct.comps.items[c].fluents & moving.keys()]
+        return tuple(sorted(set(own) | set(self.comps_for(flow, "dynamic"))))
+
+    def _with_margin(
+        self, t: float, facts: int, values: Values, cond: CondFn, cond_comps: frozenset[int],
+        log: EventLog, margin: float,
+    ) -> tuple[float, int, Values]:
+        if margin <= 0.0:
+            return t, facts, values
+        _, flow = self.flow(facts, values)
+        if not flow.moving:
+            return t, facts, values
+        dt = self.next_change(values, flow, self._watch(flow, cond_comps), 2.0 * margin)
+        step = margin if dt is None else min(margin, 0.5 * dt)
+        until = round(math.floor((t + step) / self.config.grid) * self.config.grid, 9)
+        if until <= t:
+            return t, facts, values
+        trial: EventLog = []
+        f2, v2 = self.advance(t, facts, values, until, trial)
+        if not cond(f2, v2):
+            return t, facts, values
+        log.extend(trial)
+        return until, f2, v2
+
+
+Buckets = dict[int, list[int]]
+
+
+def _buckets(ops: list) -> tuple[list[tuple[int, list[int]]], list[int]]:  # type: ignore[type-arg]
+    """Index operators by one required fact, so only those whose key fact holds are checked."""
+    buckets: Buckets = {}
+    always: list[int] = []
+    for op in ops:
+        if op.req:
+            key = (op.req & -op.req).bit_length() - 1
+            buckets.setdefault(key, []).append(op.index)
+        else:
+            always.append(op.index)
+    return [(1 << k, v) for k, v in sorted(buckets.items())], always
+
+
+def _candidates(
+    facts: int, buckets: list[tuple[int, list[int]]], always: list[int]
+) -> list[int]:
+    out = list(always)
+    for bit, ids in buckets:
+        if facts & bit:
+            out.extend(ids)
+    return out
+
+
+def holds_all(conds: Iterable[Callable[[int, Values], bool]], facts: int, values: Values) -> bool:
+    """True if every condition holds."""
+    return all(c(facts, values) for c in conds)

@@ -1,0 +1,221 @@
+"""Greedy best-first search in exact time, with lazy evaluation and preferred operators.
+
+A node is a state at a time on the plan grid. Its successors (operators) are:
+
+- ``("a", i)``: apply action ``i`` now, or ``epsilon`` after the previous action if that was
+  less than ``epsilon`` ago (VAL applies same-time actions in parallel), then cascade events;
+- ``("w",)``: wait until the next critical time (a watched comparison may flip);
+- ``("u", g)``: wait until goal group ``g`` holds, plus a small margin if it keeps holding;
+- ``("g",)``: wait until the whole goal holds.
+
+Evaluation is lazy (as in Fast Downward's lazy search): successors enter the open lists with
+their parent's value and are computed when popped. Two open lists, all operators and preferred
+ones, are popped alternately, with a boost for the preferred list after progress (LAMA). Ties are
+broken by insertion order, so a run is deterministic. Duplicates are detected on the facts and the
+values rounded to ``value_precision``.
+"""
+
+from __future__ import annotations
+
+import heapq
+import itertools
+from collections.abc import Callable
+from dataclasses import dataclass, field
+
+from artiplan.search.compiled import CompiledTask
+from artiplan.search.dynamics import Dynamics, EventLog, Values, grid_after
+from artiplan.search.heuristic import Evaluation, RateHeuristic
+
+Op = tuple  # type: ignore[type-arg]
+
+
+@dataclass(frozen=True)
+class SearchConfig:
+    """Settings of the search.
+
+    Attributes:
+        epsilon: Separation [s] between successive actions (> VAL's tolerance 0.001).
+        value_precision: Values are rounded to this many decimals for duplicate detection.
+        goal_margin: Extra time [s] a goal-group wait runs on, while the group keeps holding.
+        boost: Pops from the preferred list after each improvement of the best value.
+        max_wait_steps: Critical times one macro wait may cross.
+    """
+
+    epsilon: float = 0.001
+    value_precision: int = 6
+    goal_margin: float = 0.05
+    boost: int = 1000
+    max_wait_steps: int = 64
+
+
+@dataclass
+class Node:
+    """A search node: the state at ``time`` [s] and how it was reached."""
+
+    time: float
+    facts: int
+    values: Values
+    ready: float  # earliest time of the next action [s]
+    parent: int
+    op: Op
+    events: EventLog
+    by_action: bool
+    after: int = 0  # events[after:] were triggered by the node's action
+
+
+@dataclass
+class SearchOutcome:
+    """What the search loop found: the goal node (or None) and its counters."""
+
+    goal: int | None
+    nodes: list[Node]
+    closing: tuple[float, int] | None  # (time, no-op action) that ends the plan, if any
+    stats: dict[str, float] = field(default_factory=dict)
+    exhausted: bool = False
+
+
+class Search:
+    """One search over a compiled task."""
+
+    def __init__(
+        self, ct: CompiledTask, dyn: Dynamics, heuristic: RateHeuristic, config: SearchConfig,
+        check_limits: Callable[[], None],
+    ) -> None:
+        self.ct, self.dyn, self.h, self.config = ct, dyn, heuristic, config
+        self.check_limits = check_limits
+        self.noops = [a.index for a in ct.actions if a.noop]
+        self.nodes: list[Node] = []
+        self.seen: set[tuple[int, tuple[float | None, ...]]] = set()
+        self.counter = itertools.count()
+        self.stats: dict[str, float] = {"expanded": 0, "generated": 0, "evaluated": 0,
+                                        "duplicates": 0}
+
+    # ------------------------------------------------------------------ successors
+    def _key(self, node: Node) -> tuple[int, tuple[float | None, ...]]:
+        prec = self.config.value_precision
+        return node.facts, tuple(None if v != v else round(v, prec) for v in node.values)
+
+    def successor(self, parent: Node, pi: int, op: Op) -> Node | None:
+        """The node ``op`` leads to from ``parent`` (index ``pi``), or None if inapplicable."""
+        log: EventLog = []
+        dyn = self.dyn
+        if op[0] == "a":
+            t = max(parent.time, parent.ready)
+            facts, values = dyn.advance(parent.time, parent.facts, parent.values, t, log)
+            act = self.ct.actions[op[1]]
+            if facts & act.forb or not act.pre(facts, values):
+                return None
+            facts, values = act.effect(facts, values)
+            after = len(log)
+            facts, values = dyn.settle(t, facts, values, log)
+            ready = round(t + self.config.epsilon, 9)
+            return Node(t, facts, values, ready, pi, op, log, True, after)
+        if op[0] == "w":
+            res = dyn.wait_next(parent.time, parent.facts, parent.values, log)
+        else:
+            if op[0] == "u":
+                g = self.h.groups[op[1]]
+                fn, comps, margin = g.fn, g.comps, self.config.goal_margin
+            else:
+                fn, comps, margin = self.ct.goal, self.ct.goal_comps, self.config.goal_margin
+            res = dyn.wait_until(parent.time, parent.facts, parent.values, fn, comps, log,
+                                 self.config.max_wait_steps, margin)
+        if res is None:
+            return None
+        t, facts, values = res
+        return Node(t, facts, values, parent.ready, pi, op, log, False)
+
+    def closing(self, node: Node) -> tuple[float, int] | None | bool:
+        """How a goal node ends the plan: True if its action does, (time, no-op) or None."""
+        if node.by_action or node.parent < 0:
+            return True
+        t = max(node.time, node.ready)
+        facts, values = node.facts, node.values
+        if t > node.time:
+            trial: EventLog = []
+            facts, values = self.dyn.advance(node.time, facts, values, t, trial)
+            if not self.ct.goal(facts, values):
+                return None
+        for i in self.noops:
+            if self.ct.actions[i].pre(facts, values):
+                return t, i
+        return None
+
+    # ------------------------------------------------------------------ the loop
+    def run(self, initial: Node) -> SearchOutcome:
+        """Lazy GBFS with a preferred-operator list; returns when the goal or the end is found."""
+        regular: list[tuple[float, int, int, Op]] = []
+        preferred: list[tuple[float, int, int, Op]] = []
+        boost = 0
+        best_h = float("inf")
+        pop_preferred = True
+        pending: list[tuple[int, Op]] = [(-1, ("root",))]
+        while True:
+            self.check_limits()
+            if pending:
+                pi, op = pending.pop()
+            else:
+                use_pref = preferred and (boost > 0 or pop_preferred or not regular)
+                queue = preferred if use_pref else regular
+                if not queue:
+                    return SearchOutcome(None, self.nodes, None, self.stats, exhausted=True)
+                _, _, pi, op = heapq.heappop(queue)
+                if use_pref and boost > 0:
+                    boost -= 1
+                pop_preferred = not pop_preferred
+            node = initial if pi < 0 else self.successor(self.nodes[pi], pi, op)
+            if node is None:
+                continue
+            key = self._key(node)
+            if key in self.seen:
+                self.stats["duplicates"] += 1
+                continue
+            self.seen.add(key)
+            self.nodes.append(node)
+            ni = len(self.nodes) - 1
+            if self.ct.goal(node.facts, node.values):
+                end = self.closing(node)
+                if end is True:
+                    return SearchOutcome(ni, self.nodes, None, self.stats)
+                if end:
+                    return SearchOutcome(ni, self.nodes, end, self.stats)  # type: ignore[arg-type]
+            active, _ = self.dyn.flow(node.facts, node.values)
+            ev = self.h.evaluate(node.facts, node.values, active)
+            self.stats["evaluated"] += 1
+            self.stats["expanded"] += 1
+            if ev.h < best_h:
+                best_h = ev.h
+                boost += self.config.boost
+            for op2, pref in self._operators(node, ev, bool(active)):
+                entry = (ev.h, next(self.counter), ni, op2)
+                heapq.heappush(regular, entry)
+                if pref:
+                    heapq.heappush(preferred, entry)
+                self.stats["generated"] += 1
+
+    def _operators(self, node: Node, ev: Evaluation, moving: bool) -> list[tuple[Op, bool]]:
+        """Operators of a node, preferred first (their order breaks ties)."""
+        ops: list[tuple[Op, bool]] = []
+        if moving:
+            if not ev.actions_needed and ev.unsatisfied:
+                ops.append((("g",), True))
+            ops.extend((("u", gi), True) for gi in ev.waits)
+        pref = set(ev.preferred)
+        ops.extend((("a", i), True) for i in ev.preferred)
+        if moving:
+            ops.append((("w",), False))
+        for a in self.ct.actions:
+            if a.index in pref or a.noop or node.facts & a.forb or a.req & ~node.facts:
+                continue
+            ops.append((("a", a.index), False))
+        return ops
+
+
+def initial_node(ct: CompiledTask, dyn: Dynamics) -> Node:
+    """The initial state after the events it triggers at time 0."""
+    log: EventLog = []
+    facts, values = dyn.settle(0.0, ct.init_facts, ct.init_values, log)
+    return Node(0.0, facts, values, 0.0, -1, ("init",), log, False)
+
+
+__all__ = ["Node", "Search", "SearchConfig", "SearchOutcome", "grid_after", "initial_node"]

@@ -1,0 +1,293 @@
+"""A heuristic that knows rates: numeric relaxation with processes as achievers.
+
+For every goal conjunct that reads one fluent ``x`` (``x > 150``; a window across the wrap), the
+cheapest way to satisfy it is one process that moves ``x``: the cost is what it takes to switch
+that process on (``hadd`` over the facts of its precondition, 0 if it already runs) plus
+``time_weight`` times the time it needs, ``travel / |rate|``. ``travel`` follows the fluent in
+the process's direction, through the jumps of wrap-around events, to the goal set. A process that
+already runs and moves several goal fluents (the propagation of one rotation) costs no action for
+any of them, which is how one action that moves several angles is rewarded. Fact goals cost their
+``hadd`` value, other conjuncts 1.
+
+Preferred operators (helpful actions): the applicable actions that start the chosen processes
+(following ``hadd`` supporters back to an applicable one), and the waits for conjuncts whose
+chosen process already runs.
+"""
+
+from __future__ import annotations
+
+import heapq
+import math
+import time
+from dataclasses import dataclass
+
+from artiplan.pddl.task import And, Atom, Condition, Not
+from artiplan.search.compiled import (
+    ComparisonTable,
+    CompiledTask,
+    CondFn,
+    Linear,
+    compile_condition,
+    fact_literals,
+    linearize,
+)
+from artiplan.search.intervals import Intervals, Jump, condition_set, intersect, travel
+
+
+@dataclass(frozen=True)
+class HeuristicConfig:
+    """Weights of the heuristic.
+
+    Attributes:
+        time_weight: Cost of one second of waiting, in actions [1/s].
+        unreachable_cost: Cost of a conjunct no process seems to reach (kept finite: the
+            relaxation is not a proof, the search stays complete).
+    """
+
+    time_weight: float = 0.1
+    unreachable_cost: float = 1000.0
+
+
+@dataclass(frozen=True)
+class GoalGroup:
+    """Goal conjuncts that read one fluent (``fluent``), one fact literal, or anything else."""
+
+    fn: CondFn
+    comps: frozenset[int]
+    fluent: int | None = None
+    target: Intervals = ()
+    literal: int | None = None
+
+
+@dataclass(frozen=True)
+class Evaluation:
+    """The value of a state and what the heuristic recommends."""
+
+    h: float
+    preferred: tuple[int, ...]  # helpful action indices, ascending
+    waits: tuple[int, ...]  # goal groups whose chosen process already runs
+    actions_needed: bool  # some unsatisfied group needs a new action
+    unsatisfied: int
+
+
+def _conjuncts(cond: Condition) -> list[Condition]:
+    if isinstance(cond, And):
+        return [c for part in cond.parts for c in _conjuncts(part)]
+    return [cond]
+
+
+class RateHeuristic:
+    """The rate-aware numeric relaxation over a compiled task."""
+
+    def __init__(self, ct: CompiledTask, config: HeuristicConfig | None = None) -> None:
+        self.ct = ct
+        self.config = config or HeuristicConfig()
+        self.n_facts = len(ct.task.facts)
+        self.groups = self._groups()
+        self._relaxed_actions()
+        self.movers: dict[int, list[tuple[int, Linear]]] = {}
+        for p in ct.processes:
+            for fluent, lin, _ in p.rates:
+                if lin is not None:
+                    self.movers.setdefault(fluent, []).append((p.index, lin))
+        self.proc_lits = [self._lits(p.req, p.forb) for p in ct.processes]
+        self.jumps = self._jumps()
+        self.seconds = 0.0  # time spent in evaluate() [s]
+
+    # --------------------------------------------------------------------------- setup
+    def _lits(self, req: int, forb: int) -> tuple[int, ...]:
+        pos = [i for i in range(self.n_facts) if req >> i & 1]
+        neg = [self.n_facts + i for i in range(self.n_facts) if forb >> i & 1]
+        return tuple(pos + neg)
+
+    def _groups(self) -> list[GoalGroup]:
+        by_fluent: dict[int, list[Condition]] = {}
+        groups: list[GoalGroup] = []
+        comps: ComparisonTable = self.ct.comps
+        for conj in _conjuncts(self.ct.task.goal):
+            fn, used = compile_condition(conj, comps)
+            fls = set().union(*(comps.items[c].fluents for c in used)) if used else set()
+            if len(fls) == 1 and condition_set(conj, next(iter(fls))) is not None:
+                by_fluent.setdefault(next(iter(fls)), []).append(conj)
+            elif isinstance(conj, Atom):
+                groups.append(GoalGroup(fn, used, literal=conj.fact))
+            elif isinstance(conj, Not) and isinstance(conj.operand, Atom):
+                groups.append(GoalGroup(fn, used, literal=self.n_facts + conj.operand.fact))
+            else:
+                groups.append(GoalGroup(fn, used))
+        for fluent in sorted(by_fluent):
+            conjs = by_fluent[fluent]
+            fn, used = compile_condition(And(tuple(conjs)), comps)
+            target: Intervals = ((-math.inf, math.inf),)
+            for c in conjs:
+                s = condition_set(c, fluent)
+                assert s is not None
+                target = intersect(target, s)
+            groups.append(GoalGroup(fn, used, fluent=fluent, target=target))
+        return groups
+
+    def _relaxed_actions(self) -> None:
+        n = self.n_facts
+        self.pre_lits: list[tuple[int, ...]] = []
+        self.eff_lits: list[tuple[int, ...]] = []
+        self.lit_users: list[list[int]] = [[] for _ in range(2 * n)]
+        for a in self.ct.actions:
+            pre = self._lits(a.req, a.forb)
+            eff_src = self.ct.task.actions[a.index].effect
+            adds = set(eff_src.add) | {f for ce in eff_src.conditional for f in ce.effect.add}
+            dels = set(eff_src.delete)
+            self.pre_lits.append(pre)
+            self.eff_lits.append(tuple(sorted(adds)) + tuple(n + f for f in sorted(dels)))
+            for lit in pre:
+                self.lit_users[lit].append(a.index)
+
+    def _jumps(self) -> dict[int, tuple[Jump, ...]]:
+        """Events that read one fluent and shift or set it: wrap-arounds."""
+        out: dict[int, list[Jump]] = {}
+        for ev in self.ct.task.events:
+            eff = ev.effect
+            if eff.add or eff.delete or eff.conditional or len(eff.numeric) != 1:
+                continue
+            ne = eff.numeric[0]
+            trigger = condition_set(ev.precondition, ne.fluent)
+            lin = linearize(ne.expr)
+            if trigger is None or lin is None or lin[0]:
+                continue
+            k = lin[1]
+            scale, shift = {
+                "assign": (0.0, k), "increase": (1.0, k), "decrease": (1.0, -k),
+            }.get(ne.op, (1.0, 0.0))
+            out.setdefault(ne.fluent, []).append(Jump(trigger, scale, shift))
+        return {f: tuple(j) for f, j in out.items()}
+
+    # --------------------------------------------------------------------------- hadd
+    def fact_costs(self, facts: int) -> tuple[list[float], list[int]]:
+        """``hadd`` cost of every fact literal from ``facts``, and each one's best supporter."""
+        n = self.n_facts
+        cost = [math.inf] * (2 * n)
+        supp = [-1] * (2 * n)
+        heap: list[tuple[float, int]] = []
+        for i in range(n):
+            lit = i if facts >> i & 1 else n + i
+            cost[lit] = 0.0
+            heap.append((0.0, lit))
+        remaining = [len(p) for p in self.pre_lits]
+        acc = [0.0] * len(self.pre_lits)
+        for a, pre in enumerate(self.pre_lits):
+            if not pre:
+                self._achieve(a, 1.0, cost, supp, heap)
+        heapq.heapify(heap)
+        done = [False] * (2 * n)
+        while heap:
+            c, lit = heapq.heappop(heap)
+            if done[lit] or c > cost[lit]:
+                continue
+            done[lit] = True
+            for a in self.lit_users[lit]:
+                remaining[a] -= 1
+                acc[a] += c
+                if remaining[a] == 0:
+                    self._achieve(a, acc[a] + 1.0, cost, supp, heap)
+        return cost, supp
+
+    def _achieve(
+        self, a: int, ca: float, cost: list[float], supp: list[int], heap: list[tuple[float, int]]
+    ) -> None:
+        for lit in self.eff_lits[a]:
+            if ca < cost[lit]:
+                cost[lit] = ca
+                supp[lit] = a
+                heapq.heappush(heap, (ca, lit))
+
+    # --------------------------------------------------------------------------- evaluate
+    def evaluate(
+        self, facts: int, values: tuple[float, ...], active: tuple[int, ...]
+    ) -> Evaluation:
+        """Heuristic value of a state whose running processes are ``active``."""
+        t0 = time.perf_counter()
+        try:
+            return self._evaluate(facts, values, active)
+        finally:
+            self.seconds += time.perf_counter() - t0
+
+    def _evaluate(
+        self, facts: int, values: tuple[float, ...], active: tuple[int, ...]
+    ) -> Evaluation:
+        cfg = self.config
+        active_set = set(active)
+        costs: tuple[list[float], list[int]] | None = None
+        h = 0.0
+        preferred: set[int] = set()
+        waits: list[int] = []
+        needed = False
+        unsat = 0
+        for gi, g in enumerate(self.groups):
+            if g.fn(facts, values):
+                continue
+            unsat += 1
+            if g.fluent is None:
+                if costs is None:
+                    costs = self.fact_costs(facts)
+                c = costs[0][g.literal] if g.literal is not None else 1.0
+                h += c if c < math.inf else cfg.unreachable_cost
+                needed = True
+                if g.literal is not None:
+                    self._helpful((g.literal,), costs, facts, preferred, 0)
+                continue
+            best, best_p, best_e = math.inf, -1, 0.0
+            x = values[g.fluent]
+            dist_cache: dict[bool, float] = {}
+            for p, (coeffs, const) in self.movers.get(g.fluent, ()):
+                r = const + sum(a * values[j] for j, a in coeffs.items())
+                if r == 0.0:
+                    continue
+                up = r > 0
+                if up not in dist_cache:
+                    dist_cache[up] = travel(x, 1.0 if up else -1.0, g.target,
+                                            self.jumps.get(g.fluent, ()))
+                d = dist_cache[up]
+                if d == math.inf:
+                    continue
+                if p in active_set:
+                    e = 0.0
+                else:
+                    if costs is None:
+                        costs = self.fact_costs(facts)
+                    e = sum(costs[0][lit] for lit in self.proc_lits[p])
+                c = e + cfg.time_weight * d / abs(r)
+                if c < best:
+                    best, best_p, best_e = c, p, e
+            if best_p < 0:
+                h += cfg.unreachable_cost
+                needed = True
+                continue
+            h += best
+            if best_e == 0.0:
+                waits.append(gi)
+            else:
+                needed = True
+                assert costs is not None
+                self._helpful(self.proc_lits[best_p], costs, facts, preferred, 0)
+        return Evaluation(h, tuple(sorted(preferred)), tuple(waits), needed, unsat)
+
+    def _helpful(
+        self, lits: tuple[int, ...], costs: tuple[list[float], list[int]], facts: int,
+        out: set[int], depth: int,
+    ) -> None:
+        cost, supp = costs
+        for lit in lits:
+            if cost[lit] == 0.0 or supp[lit] < 0:
+                continue
+            a = supp[lit]
+            if all(cost[q] == 0.0 for q in self.pre_lits[a]):
+                out.add(a)
+            elif depth < 4:
+                self._helpful(self.pre_lits[a], costs, facts, out, depth + 1)
+
+
+def literal_lits(cond: Condition, n_facts: int) -> tuple[int, ...]:
+    """Fact literals of a condition's top-level conjunction (positive i, negative n + i)."""
+    req, forb = fact_literals(cond) or (0, 0)
+    return tuple(i for i in range(n_facts) if req >> i & 1) + tuple(
+        n_facts + i for i in range(n_facts) if forb >> i & 1
+    )

@@ -1,0 +1,73 @@
+"""Time and memory limits, checked from inside the search loop.
+
+Time: wall clock and process CPU time, both against the same limit [s]. Memory: the resident set
+size growth since the search started [MB], read with ``psutil`` every ``every`` checks (a cheap
+call, but not free); a ``MemoryError`` raised by Python anywhere is reported the same way.
+"""
+
+from __future__ import annotations
+
+import os
+import time
+from dataclasses import dataclass, field
+
+try:  # psutil is a dependency, but keep the limits usable without it
+    import psutil
+except ImportError:  # pragma: no cover
+    psutil = None
+
+
+class LimitReached(Exception):
+    """The search ran out of time (``kind == 'time'``) or memory (``'memory'``)."""
+
+    def __init__(self, kind: str, detail: str) -> None:
+        super().__init__(detail)
+        self.kind = kind
+
+
+def rss_mb() -> float:
+    """Resident set size of this process [MB]."""
+    if psutil is not None:
+        return float(psutil.Process(os.getpid()).memory_info().rss) / 2**20
+    with open("/proc/self/statm") as fh:  # pragma: no cover - Linux fallback
+        return int(fh.read().split()[1]) * os.sysconf("SC_PAGE_SIZE") / 2**20
+
+
+@dataclass
+class Limits:
+    """Limits of one planning call; ``check()`` raises :class:`LimitReached`."""
+
+    time_limit: float | None = None
+    memory_limit: float | None = None  # MB
+    every: int = 128
+    _wall0: float = field(default_factory=time.monotonic)
+    _cpu0: float = field(default_factory=time.process_time)
+    _rss0: float = 0.0
+    _calls: int = 0
+
+    def __post_init__(self) -> None:
+        if self.memory_limit is not None:
+            self._rss0 = rss_mb()
+
+    def elapsed(self) -> float:
+        """Wall-clock seconds since the limits started."""
+        return time.monotonic() - self._wall0
+
+    def remaining(self) -> float | None:
+        return None if self.time_limit is None else self.time_limit - self.elapsed()
+
+    def check(self) -> None:
+        self._calls += 1
+        if self.time_limit is not None:
+            wall = time.monotonic() - self._wall0
+            cpu = time.process_time() - self._cpu0
+            if wall > self.time_limit or cpu > self.time_limit:
+                raise LimitReached(
+                    "time", f"time limit of {self.time_limit:g} s reached "
+                    f"(wall {wall:.2f} s, cpu {cpu:.2f} s)")
+        if self.memory_limit is not None and self._calls % self.every == 0:
+            used = rss_mb() - self._rss0
+            if used > self.memory_limit:
+                raise LimitReached(
+                    "memory", f"memory limit of {self.memory_limit:g} MB reached "
+                    f"(search grew by {used:.0f} MB)")

@@ -1,0 +1,178 @@
+"""Proofs of unsolvability by a relaxed reachability and interval analysis.
+
+Sound over-approximation of everything any plan can reach:
+
+- fact literals: from the initial state, every action, event and process whose top-level fact
+  literals are reachable adds its effects (deletes make the negative literal reachable); numeric
+  preconditions are ignored (assumed satisfiable);
+- fluents: a fluent no reachable happening or process changes keeps its initial value; one that
+  reachable processes only increase (decrease) keeps its initial value as a lower (upper) bound;
+  any instantaneous numeric effect on it makes it unbounded.
+
+The goal is then evaluated three-valued on these sets; if it cannot be true, no plan exists.
+"""
+
+from __future__ import annotations
+
+import math
+
+from artiplan.pddl.task import And, Atom, BinOp, Comparison, Condition, Not, Or, Task, Truth
+from artiplan.search.compiled import fact_literals, fluents_of, linearize, written_fluents
+
+Interval = tuple[float, float]
+
+
+def _reachable_literals(task: Task) -> tuple[set[int], set[int], set[int]]:
+    """(facts that can be true, facts that can be false, reachable process indices)."""
+    n = len(task.facts)
+    pos = set(task.init_facts)
+    neg = set(range(n)) - pos
+    ops = list(task.actions) + list(task.events)
+    fired: set[int] = set()
+    procs: set[int] = set()
+    changed = True
+    while changed:
+        changed = False
+        for i, op in enumerate(ops):
+            if i in fired or not _enabled(op.precondition, pos, neg):
+                continue
+            fired.add(i)
+            changed = True
+            eff = op.effect
+            pos.update(eff.add)
+            neg.update(eff.delete)
+            for ce in eff.conditional:
+                pos.update(ce.effect.add)
+                neg.update(ce.effect.delete)
+        for i, proc in enumerate(task.processes):
+            if i not in procs and _enabled(proc.precondition, pos, neg):
+                procs.add(i)
+                pos.update(proc.discrete.add)
+                changed = True
+    return pos, neg, procs
+
+
+def _enabled(cond: Condition, pos: set[int], neg: set[int]) -> bool:
+    req, forb = fact_literals(cond) or (0, 0)
+    return all(i in pos for i in _bits(req)) and all(i in neg for i in _bits(forb))
+
+
+def _bits(mask: int) -> list[int]:
+    out = []
+    i = 0
+    while mask:
+        if mask & 1:
+            out.append(i)
+        mask >>= 1
+        i += 1
+    return out
+
+
+def fluent_bounds(task: Task) -> tuple[list[Interval], set[int], set[int]]:
+    """Reachable interval of every fluent, and the reachable facts (true, false)."""
+    pos, neg, procs = _reachable_literals(task)
+    up: set[int] = set()
+    down: set[int] = set()
+    for i in procs:
+        for ce in task.processes[i].continuous:
+            lin = linearize(ce.rate)
+            if lin is not None and not lin[0]:
+                if lin[1] > 0:
+                    up.add(ce.fluent)
+                elif lin[1] < 0:
+                    down.add(ce.fluent)
+            else:
+                up.add(ce.fluent)
+                down.add(ce.fluent)
+    for op in list(task.actions) + list(task.events):
+        if _enabled(op.precondition, pos, neg):
+            for f in written_fluents(op.effect):
+                up.add(f)
+                down.add(f)
+    bounds: list[Interval] = []
+    for f, v in enumerate(task.init_values):
+        if v is None:
+            bounds.append((-math.inf, math.inf))
+            continue
+        bounds.append((-math.inf if f in down else v, math.inf if f in up else v))
+    return bounds, pos, neg
+
+
+def _possible(cond: Condition, b: list[Interval], pos: set[int], neg: set[int]) -> set[bool]:
+    """The truth values ``cond`` can take somewhere in the over-approximation."""
+    if isinstance(cond, Truth):
+        return {cond.value}
+    if isinstance(cond, Atom):
+        return ({True} if cond.fact in pos else set()) | ({False} if cond.fact in neg else set())
+    if isinstance(cond, Not):
+        return {not v for v in _possible(cond.operand, b, pos, neg)}
+    if isinstance(cond, (And, Or)):
+        parts = [_possible(p, b, pos, neg) for p in cond.parts]
+        out = set()
+        if isinstance(cond, And):
+            if all(True in p for p in parts):
+                out.add(True)
+            if any(False in p for p in parts):
+                out.add(False)
+        else:
+            if any(True in p for p in parts):
+                out.add(True)
+            if all(False in p for p in parts):
+                out.add(False)
+        return out
+    assert isinstance(cond, Comparison)
+    return _comparison_possible(cond, b)
+
+
+def _comparison_possible(cond: Comparison, b: list[Interval]) -> set[bool]:
+    lin = linearize(BinOp("-", cond.left, cond.right))
+    if lin is None:
+        return {True, False}
+    lo = hi = lin[1]
+    for f, a in lin[0].items():
+        flo, fhi = b[f]
+        terms = (a * flo, a * fhi)
+        lo += min(terms) if not math.isnan(min(terms)) else -math.inf
+        hi += max(terms) if not math.isnan(max(terms)) else math.inf
+    out = set()
+    if cond.op in (">", ">="):
+        if hi > 0 or (cond.op == ">=" and hi >= 0):
+            out.add(True)
+        if lo < 0 or (cond.op == ">" and lo <= 0):
+            out.add(False)
+    elif cond.op in ("<", "<="):
+        if lo < 0 or (cond.op == "<=" and lo <= 0):
+            out.add(True)
+        if hi > 0 or (cond.op == "<" and hi >= 0):
+            out.add(False)
+    else:
+        if lo <= 0 <= hi:
+            out.add(True)
+        if lo < hi or lo != 0:
+            out.add(False)
+    return out
+
+
+def prove_unsolvable(task: Task) -> str | None:
+    """A reason why no plan can exist, or ``None`` if the analysis finds none."""
+    bounds, pos, neg = fluent_bounds(task)
+    parts = task.goal.parts if isinstance(task.goal, And) else (task.goal,)
+    for part in parts:
+        if True not in _possible(part, bounds, pos, neg):
+            return f"goal conjunct {_show(part, task)} can never hold (relaxed reachability)"
+    if True not in _possible(task.goal, bounds, pos, neg):
+        return "the goal can never hold (relaxed reachability)"
+    return None
+
+
+def _show(cond: Condition, task: Task) -> str:
+    if isinstance(cond, Atom):
+        return task.facts[cond.fact]
+    if isinstance(cond, Comparison):
+        names = sorted(task.fluents[f] for f in _fluents(cond))
+        return f"({cond.op} ...) on {', '.join(names)}"
+    return type(cond).__name__.lower()
+
+
+def _fluents(cond: Comparison) -> set[int]:
+    return fluents_of(cond.left) | fluents_of(cond.right)
