@@ -26,7 +26,8 @@ def test_counts_by_hand(arm_domain: str, arm_problem: str) -> None:
     # move-increase: only L2, L3 can ever be moved (4), L1 pruned (2); propagate: 1 pair x 2;
     # gravity: 3 links.
     assert (task.stats.actions, task.stats.events, task.stats.processes) == (8, 6, 9)
-    assert task.stats.pruned == 2
+    # Naive instances: start/stop 3*3*2 each, move 3*2, propagate 3*3*2, gravity 3, events 3*2.
+    assert task.stats.pruned == (18 + 18 + 6 + 18 + 3 + 6) - (8 + 6 + 9)
     # in-use, free-to-move x3, increasing-angle-robot L2/L3 x 2 planes, -gravity x3.
     assert task.stats.facts == 11
     assert len(task.fluents) == 6  # angles only: speeds are static and folded
@@ -100,7 +101,8 @@ def test_adl_counts_by_hand() -> None:
     # move: 4 adjacent pairs ((r1 r1) fails the inequality); pick: 2 balls x r1..r3 (robby
     # never reaches r4: 2 pruned); drop-all: 4 rooms; switch: 4; paint: r1..r3 (r4 pruned).
     assert len(names) == 4 + 6 + 4 + 4 + 3
-    assert task.stats.pruned == 3
+    # Naive instances: move 4*4, pick 2*4, drop-all 4, switch 4, paint 4.
+    assert task.stats.pruned == (16 + 8 + 4 + 4 + 4) - len(names)
     assert "(move r1 r1)" not in names and "(pick b1 r4)" not in names
     # at-robby r1..r3, at: 2 balls x 4 rooms (drop-all reaches r4), carry x2, lit r1..r3,
     # painted r2, r3 ((painted r1) is true and never deleted: folded away).

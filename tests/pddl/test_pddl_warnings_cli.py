@@ -45,6 +45,20 @@ def test_problem_warnings() -> None:
     assert task.fluents == ()
 
 
+def test_value_given_twice_warns() -> None:
+    domain = SMALL.replace("(:predicates", "(:functions (f))\n  (:predicates")
+    problem = SMALL_PROBLEM.replace("(not (q))", "(= (f) 1) (= (F) 2)")
+    task = load_task(domain, problem)
+    assert any("F is initialised twice" in w for w in task.warnings)
+    assert task.init_values == ()  # (f) is static and unused: folded away
+
+
+def test_byte_order_mark_and_crlf_are_accepted() -> None:
+    domain = parse_domain("\ufeff" + SMALL.replace("\n", "\r\n"), "bom.pddl")
+    assert domain == parse_domain(SMALL)
+    assert domain.operators[0].loc is not None and domain.operators[0].loc.line == 5
+
+
 def test_names_are_case_insensitive_but_keep_their_spelling() -> None:
     problem = SMALL_PROBLEM.replace("(p A)", "(P a)").replace("(:goal (q))", "(:GOAL (Q))")
     task = load_task(SMALL.upper().replace(":MADE-UP-FEATURE", ""), problem)
@@ -84,7 +98,7 @@ def test_ground_command(files: tuple[Path, Path], capsys: pytest.CaptureFixture[
     d, p = files
     assert main(["ground", str(d), str(p), "--list"]) == 0
     out, _ = capsys.readouterr()
-    assert "facts 11, fluents 6, actions 8, events 6, processes 9, pruned 2" in out
+    assert "facts 11, fluents 6, actions 8, events 6, processes 9, pruned 46" in out
     assert "  (start-increase L1 L2 z-axis)" in out
     assert "  (propagate L2 L3 xy-axes)" in out
 

@@ -87,6 +87,7 @@ def check_effect(
                 "fact is set at every instant the process is active"
             )
     elif isinstance(e, s.NumericAssignment):
+        scope.features.add("functions")
         scope.check_function(e.target, variables)
         continuous = mentions_time(e.expr)
         if continuous:
@@ -123,6 +124,18 @@ def check_problem(domain: s.Domain, problem: s.Problem) -> list[str]:
         warnings.append(f"{_where(problem.loc)}problem '{problem.name}' names domain "
                         f"'{problem.domain_name}', but the domain is '{domain.name}'")
     scope = Scope(domain, problem.objects)
+    warnings += _check_objects(scope, domain, problem)
+    warnings += _check_init(scope, problem)
+    if problem.goal is not None:
+        check_formula(scope, problem.goal, {})
+    if problem.metric is not None:
+        check_numeric(scope, problem.metric.expr, {}, allow_time=False)
+    warnings.extend(requirement_warnings(problem.requirements, None, problem.loc))
+    return warnings
+
+
+def _check_objects(scope: Scope, domain: s.Domain, problem: s.Problem) -> list[str]:
+    warnings = []
     constants = {c.name.lower() for c in domain.constants}
     seen: set[str] = set()
     for o in problem.objects:
@@ -134,21 +147,27 @@ def check_problem(domain: s.Domain, problem: s.Problem) -> list[str]:
         if key in constants:
             warnings.append(f"{_where(o.loc)}object '{o.name}' repeats a domain constant")
         seen.add(key)
+    return warnings
+
+
+def _check_init(scope: Scope, problem: s.Problem) -> list[str]:
+    warnings = []
     undeclared: set[str] = set()
+    values: set[tuple[str, ...]] = set()
     for item in problem.init:
         if isinstance(item, s.AtomicFormula):
             scope.check_atom(item, {})
         elif item.target.name.lower() in scope.functions:
             scope.check_function(item.target, {})
+            fkey = (item.target.name.lower(), *(a.name.lower() for a in item.target.args))
+            if fkey in values:
+                warnings.append(f"{_where(item.loc)}{item.target.name} is initialised twice; "
+                                "the last value is used")
+            values.add(fkey)
         elif item.target.name.lower() not in undeclared:
             undeclared.add(item.target.name.lower())
             warnings.append(f"{_where(item.loc)}function '{item.target.name}' is initialised "
                             "but never declared in the domain (ignored)")
-    if problem.goal is not None:
-        check_formula(scope, problem.goal, {})
-    if problem.metric is not None:
-        check_numeric(scope, problem.metric.expr, {}, allow_time=False)
-    warnings.extend(requirement_warnings(problem.requirements, None, problem.loc))
     return warnings
 
 

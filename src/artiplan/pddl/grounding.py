@@ -4,7 +4,8 @@ Steps, each cheap: check the problem against the domain; find the static predica
 functions (never changed by any effect); instantiate every operator (static conjuncts checked as
 parameters are bound); relaxed reachability prunes operators that can never apply; facts that can
 never become true fold to ``FALSE``, facts true initially and never deleted to ``TRUE``; the
-remaining facts are renumbered.
+remaining facts are renumbered. ``GroundingStats.pruned`` counts the naive instances (every
+parameter over every object of its type) that did not make it into the task.
 """
 
 from __future__ import annotations
@@ -107,19 +108,18 @@ def ground(domain: s.Domain, problem: s.Problem) -> t.Task:
             init_facts.add(ctx.fact((item.predicate.lower(),
                                      *(a.name.lower() for a in item.args))))
     instances: list[Instance] = []
-    pruned = 0
+    naive = 0
     for op in domain.operators:
-        found, rejected = instantiate(ctx, op)
+        found, count = instantiate(ctx, op)
         instances.extend(found)
-        pruned += rejected
+        naive += count
     goal = t.TRUE if problem.goal is None else ground_condition(ctx, problem.goal, {})
     metric, metric_warning = _metric(ctx, problem.metric)
     warnings.extend(metric_warning)
     applicable, reached = reachable(instances, init_facts)
     kept = [inst for inst, ok in zip(instances, applicable, strict=True) if ok]
-    pruned += len(instances) - len(kept)
     return _assemble(ctx, symbols, domain, problem, kept, init_facts, reached, init_values,
-                     goal, metric, pruned, warnings, start)
+                     goal, metric, naive, warnings, start)
 
 
 def _metric(ctx: GroundContext, spec: s.MetricSpec | None) -> tuple[t.Metric | None, list[str]]:
@@ -137,19 +137,17 @@ def _metric(ctx: GroundContext, spec: s.MetricSpec | None) -> tuple[t.Metric | N
 def _assemble(
     ctx: GroundContext, symbols: dict[str, str], domain: s.Domain, problem: s.Problem,
     kept: list[Instance], init_facts: set[int], reached: set[int],
-    init_values: dict[int, float], goal: t.Condition, metric: t.Metric | None, pruned: int,
+    init_values: dict[int, float], goal: t.Condition, metric: t.Metric | None, naive: int,
     warnings: list[str], start: float,
 ) -> t.Task:
     effects = [inst.effect.effect() for inst in kept]
     fact_map, kept_facts = fold_facts(len(ctx.fact_ids), init_facts, reached,
                                       deleted_facts(effects))
-    by_facts = Renumbering(fact_map, {i: i for i in range(len(ctx.fluent_ids))})
+    by_facts = Renumbering(fact_map, None)
     ops: list[tuple[Instance, t.Condition, t.Effect]] = []
     for inst, eff in zip(kept, effects, strict=True):
         pre = by_facts.condition(inst.precondition)
-        if pre == t.FALSE:
-            pruned += 1
-        else:
+        if pre != t.FALSE:
             ops.append((inst, pre, by_facts.effect(eff)))
     goal = by_facts.condition(goal)
     used = set(init_values)
@@ -163,14 +161,18 @@ def _assemble(
             used.add(c.fluent)
             used.update(fluents_in_num(c.rate))
     old_fluents = sorted(used)
-    by_fluents = Renumbering({i: t.Atom(i) for i in range(len(kept_facts))},
-                             {old: new for new, old in enumerate(old_fluents)})
+    fluent_map = {old: new for new, old in enumerate(old_fluents)}
+    by_fluents = Renumbering(
+        {i: t.Atom(i) for i in range(len(kept_facts))},
+        None if len(old_fluents) == len(ctx.fluent_ids) else fluent_map,
+    )
     actions: list[t.GroundAction] = []
     events: list[t.GroundAction] = []
     processes: list[t.GroundProcess] = []
     for inst, pre, eff in ops:
         args = tuple(ctx.display.get(a, a) for a in inst.args)
-        pre, eff = by_fluents.condition(pre), by_fluents.effect(eff)
+        if by_fluents.fluents is not None:
+            pre, eff = by_fluents.condition(pre), by_fluents.effect(eff)
         if inst.op.kind == "process":
             processes.append(t.GroundProcess(inst.op.name, args, pre,
                                              by_fluents.continuous(inst.effect.continuous), eff))
@@ -186,7 +188,7 @@ def _assemble(
         metric = t.Metric(metric.direction, by_fluents.num(metric.expr), metric.uses_total_time)
     stats = t.GroundingStats(
         facts=len(facts), fluents=len(fluents), actions=len(actions), events=len(events),
-        processes=len(processes), pruned=pruned, seconds=time.perf_counter() - start,
+        processes=len(processes), pruned=naive - len(ops), seconds=time.perf_counter() - start,
     )
     return t.Task(
         domain_name=domain.name,

@@ -38,6 +38,8 @@ class GroundContext:
     fluent_ids: dict[Key, int] = field(default_factory=dict)
     #: Fluent ids of static functions the problem leaves undefined.
     undefined: set[int] = field(default_factory=set)
+    #: ``id(expr)`` -> the rate of a continuous effect's expression (None if not continuous).
+    rates: dict[int, s.NumExpr | None] = field(default_factory=dict)
 
     def fact(self, key: Key) -> int:
         i = self.fact_ids.get(key)
@@ -196,7 +198,9 @@ def _numeric(ctx: GroundContext, e: s.NumericAssignment, binding: Binding,
     target = e.target
     key = (target.name.lower(), *(term_value(a, binding) for a in target.args))
     fluent = ctx.fluent(key)
-    rate_expr = time_rate(e.expr)
+    if id(e.expr) not in ctx.rates:
+        ctx.rates[id(e.expr)] = time_rate(e.expr)
+    rate_expr = ctx.rates[id(e.expr)]
     if rate_expr is None:
         out.numeric.append(t.NumericEffect(e.op, fluent, ground_num(ctx, e.expr, binding)))
         return

@@ -87,7 +87,7 @@ def tokenize(text: str, filename: str) -> list[Token]:
 
 def read_sexpr(text: str, filename: str) -> SList:
     """The single top-level list of ``text`` (a domain or problem file)."""
-    tokens = tokenize(text, filename)
+    tokens = tokenize(text.removeprefix("\ufeff"), filename)  # a byte-order mark is not text
     if not tokens:
         raise InputError(
             "empty file", SourceLocation(filename, 1, 1), expected="'(define'", found="nothing"

@@ -8,6 +8,7 @@ the n*n pairs of links that are not neighbours.
 
 from __future__ import annotations
 
+import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 
@@ -105,18 +106,16 @@ def bindings(ctx: GroundContext, op: s.Operator) -> Iterator[Binding]:
 
 
 def instantiate(ctx: GroundContext, op: s.Operator) -> tuple[list[Instance], int]:
-    """The ground instances of ``op`` whose precondition is not statically false, and the number
-    rejected after full instantiation (those the early checks missed)."""
+    """The ground instances of ``op`` whose precondition is not statically false, and the
+    number of naive instances (every parameter over every object of its type)."""
     out: list[Instance] = []
-    rejected = 0
     for b in bindings(ctx, op):
         pre = t.TRUE if op.precondition is None else ground_condition(ctx, op.precondition, b)
         if pre == t.FALSE:
-            rejected += 1
             continue
         parts = EffectParts()
         if op.effect is not None:
             ground_effect(ctx, op.effect, b, parts)
         args = tuple(b[p.name.lower()] for p in op.parameters)
         out.append(Instance(op, args, pre, parts))
-    return out, rejected
+    return out, math.prod(len(ctx.objects_of(p.types)) for p in op.parameters)

@@ -15,7 +15,7 @@ class Renumbering:
     """Old fact id -> its condition in the new numbering; old fluent id -> new id."""
 
     facts: dict[int, t.Condition]
-    fluents: dict[int, int]
+    fluents: dict[int, int] | None  # None: fluents keep their numbers
 
     def condition(self, c: t.Condition) -> t.Condition:
         if isinstance(c, t.Atom):
@@ -31,6 +31,8 @@ class Renumbering:
         return c
 
     def num(self, e: t.NumExpr) -> t.NumExpr:
+        if self.fluents is None or isinstance(e, t.Const):
+            return e
         if isinstance(e, t.FluentRef):
             return t.FluentRef(self.fluents[e.index])
         if isinstance(e, t.BinOp):
@@ -43,8 +45,8 @@ class Renumbering:
         """``e`` renumbered; parts on folded facts dropped, ``TRUE`` conditions inlined."""
         add = [m.fact for f in e.add if isinstance(m := self.facts[f], t.Atom)]
         delete = [m.fact for f in e.delete if isinstance(m := self.facts[f], t.Atom)]
-        numeric = [t.NumericEffect(n.op, self.fluents[n.fluent], self.num(n.expr))
-                   for n in e.numeric]
+        numeric = list(e.numeric) if self.fluents is None else [
+            t.NumericEffect(n.op, self.fluents[n.fluent], self.num(n.expr)) for n in e.numeric]
         conditional: list[t.ConditionalEffect] = []
         for ce in e.conditional:
             cond = self.condition(ce.condition)
@@ -61,6 +63,8 @@ class Renumbering:
         return t.Effect(tuple(add), tuple(delete), tuple(numeric), tuple(conditional))
 
     def continuous(self, effects: Iterable[t.ContinuousEffect]) -> tuple[t.ContinuousEffect, ...]:
+        if self.fluents is None:
+            return tuple(effects)
         return tuple(t.ContinuousEffect(self.fluents[c.fluent], self.num(c.rate))
                      for c in effects)
 
