@@ -134,22 +134,28 @@ def _metric(ctx: GroundContext, spec: s.MetricSpec | None) -> tuple[t.Metric | N
         return None, [f"{where}metric mixes total-time with other terms: not supported, ignored"]
 
 
-def _assemble(
-    ctx: GroundContext, symbols: dict[str, str], domain: s.Domain, problem: s.Problem,
-    kept: list[Instance], init_facts: set[int], reached: set[int],
-    init_values: dict[int, float], goal: t.Condition, metric: t.Metric | None, naive: int,
-    warnings: list[str], start: float,
-) -> t.Task:
+Op = tuple[Instance, t.Condition, t.Effect]
+
+
+def _fold(ctx: GroundContext, kept: list[Instance], init_facts: set[int], reached: set[int],
+          goal: t.Condition) -> tuple[list[Op], t.Condition, dict[int, t.Condition], list[int]]:
+    """Fold constant facts and renumber the rest: operators still possible, goal, fact map,
+    kept old fact ids."""
     effects = [inst.effect.effect() for inst in kept]
     fact_map, kept_facts = fold_facts(len(ctx.fact_ids), init_facts, reached,
                                       deleted_facts(effects))
     by_facts = Renumbering(fact_map, None)
-    ops: list[tuple[Instance, t.Condition, t.Effect]] = []
+    ops: list[Op] = []
     for inst, eff in zip(kept, effects, strict=True):
         pre = by_facts.condition(inst.precondition)
         if pre != t.FALSE:
             ops.append((inst, pre, by_facts.effect(eff)))
-    goal = by_facts.condition(goal)
+    return ops, by_facts.condition(goal), fact_map, kept_facts
+
+
+def _used_fluents(ops: list[Op], goal: t.Condition, metric: t.Metric | None,
+                  init_values: dict[int, float]) -> list[int]:
+    """Old ids of the fluents the task needs (initialised or read or changed), in order."""
     used = set(init_values)
     used.update(fluents_in_condition(goal))
     if metric is not None and metric.expr is not None:
@@ -160,12 +166,12 @@ def _assemble(
         for c in inst.effect.continuous:
             used.add(c.fluent)
             used.update(fluents_in_num(c.rate))
-    old_fluents = sorted(used)
-    fluent_map = {old: new for new, old in enumerate(old_fluents)}
-    by_fluents = Renumbering(
-        {i: t.Atom(i) for i in range(len(kept_facts))},
-        None if len(old_fluents) == len(ctx.fluent_ids) else fluent_map,
-    )
+    return sorted(used)
+
+
+def _operators(
+    ctx: GroundContext, ops: list[Op], by_fluents: Renumbering
+) -> tuple[list[t.GroundAction], list[t.GroundAction], list[t.GroundProcess]]:
     actions: list[t.GroundAction] = []
     events: list[t.GroundAction] = []
     processes: list[t.GroundProcess] = []
@@ -180,8 +186,24 @@ def _assemble(
             events.append(t.GroundAction(inst.op.name, args, pre, eff, "event"))
         else:
             actions.append(t.GroundAction(inst.op.name, args, pre, eff))
-    fact_keys = list(ctx.fact_ids)
-    fluent_keys = list(ctx.fluent_ids)
+    return actions, events, processes
+
+
+def _assemble(
+    ctx: GroundContext, symbols: dict[str, str], domain: s.Domain, problem: s.Problem,
+    kept: list[Instance], init_facts: set[int], reached: set[int],
+    init_values: dict[int, float], goal: t.Condition, metric: t.Metric | None, naive: int,
+    warnings: list[str], start: float,
+) -> t.Task:
+    ops, goal, fact_map, kept_facts = _fold(ctx, kept, init_facts, reached, goal)
+    old_fluents = _used_fluents(ops, goal, metric, init_values)
+    by_fluents = Renumbering(
+        {i: t.Atom(i) for i in range(len(kept_facts))},
+        None if len(old_fluents) == len(ctx.fluent_ids)
+        else {old: new for new, old in enumerate(old_fluents)},
+    )
+    actions, events, processes = _operators(ctx, ops, by_fluents)
+    fact_keys, fluent_keys = list(ctx.fact_ids), list(ctx.fluent_ids)
     facts = tuple(_name(ctx, symbols, fact_keys[old]) for old in kept_facts)
     fluents = tuple(_name(ctx, symbols, fluent_keys[old]) for old in old_fluents)
     if metric is not None and metric.expr is not None:
