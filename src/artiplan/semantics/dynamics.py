@@ -48,10 +48,12 @@ from artiplan.semantics.cache import per_task
 from artiplan.semantics.expressions import (
     EXACT,
     CondFn,
+    ExprFn,
     Tolerances,
     compare,
     compile_condition,
     compile_expr,
+    compile_near,
     condition_parts,
     evaluate,
     expr_fluents,
@@ -100,6 +102,10 @@ class Flow:
     polys: tuple[P.Poly, ...] | None
     config: FlowConfig = DEFAULT_FLOW
     _numeric: _Integrator | None = field(default=None, repr=False)
+    #: Per comparison: its difference polynomial and positive roots along this flow.
+    _memo: dict[Comparison, tuple[P.Poly | None, list[float] | None]] = field(
+        default_factory=dict, repr=False
+    )
 
     def values_at(self, dt: float) -> tuple[float, ...]:
         """Every fluent's value at ``start.time + dt`` [s] (dt >= 0)."""
@@ -166,16 +172,18 @@ def settled_flow(
     """
     procs = per_task(task, ("processes", config.zero_tol), lambda: _compile_processes(task, config))
     facts, values = state.facts, state.values
-    point = [fn(facts, values) for _, fn, _ in procs]
-    active = tuple(p for (p, _, _), ok in zip(procs, point, strict=True) if ok)
+    point = [fn(facts, values) for _, fn, _, _ in procs]
+    # Only a process with a comparison on its boundary can differ from its point truth.
+    edge = [near(values) for _, _, _, near in procs]
+    active = tuple(p for (p, *_), ok in zip(procs, point, strict=True) if ok)
     flow = make_flow(task, state, active, config)
     for _ in range(max_rounds):
         if flow.is_static and not active:
             return flow
         nxt = tuple(
             p
-            for (p, _, reads), ok in zip(procs, point, strict=True)
-            if (right_holds(p.precondition, flow) if reads & flow.changing else ok)
+            for (p, _, reads, _), ok, on_edge in zip(procs, point, edge, strict=True)
+            if (right_holds(p.precondition, flow) if on_edge and reads & flow.changing else ok)
         )
         if nxt == active:
             return flow
@@ -186,10 +194,15 @@ def settled_flow(
 
 def _compile_processes(
     task: Task, config: FlowConfig
-) -> list[tuple[GroundProcess, CondFn, set[int]]]:
+) -> list[tuple[GroundProcess, CondFn, set[int], ExprFn]]:
     snap = Tolerances(strict_slack=-config.zero_tol, eps=config.zero_tol)
     return [
-        (p, compile_condition(p.precondition, snap), condition_parts(p.precondition)[1])
+        (
+            p,
+            compile_condition(p.precondition, snap),
+            condition_parts(p.precondition)[1],
+            compile_near(p.precondition, config.zero_tol),
+        )
         for p in task.processes
     ]
 
@@ -198,11 +211,24 @@ def _compile_processes(
 
 
 def _comparison_poly(comp: Comparison, flow: Flow) -> P.Poly | None:
+    hit = flow._memo.get(comp)
+    if hit is not None:
+        return hit[0]
     left = flow.expr_poly(comp.left)
     right = flow.expr_poly(comp.right)
-    if left is None or right is None:
-        return None
-    return P.sub(left, right)
+    poly = None if left is None or right is None else P.sub(left, right)
+    flow._memo[comp] = (poly, None)
+    return poly
+
+
+def _comparison_roots(comp: Comparison, flow: Flow) -> list[float]:
+    """All positive roots of ``left - right`` along an exact flow (memoised per flow)."""
+    poly = _comparison_poly(comp, flow)
+    cached = flow._memo[comp][1]
+    if cached is None:
+        cached = [] if poly is None else P.positive_roots(poly, math.inf, flow.config.zero_tol)
+        flow._memo[comp] = (poly, cached)
+    return cached
 
 
 def _diff_at(comp: Comparison, flow: Flow, dt: float) -> float:
@@ -212,6 +238,10 @@ def _diff_at(comp: Comparison, flow: Flow, dt: float) -> float:
 
 def _comparison_sign_after(comp: Comparison, flow: Flow, dt: float) -> int:
     zt = flow.config.zero_tol
+    values = flow.start.values if dt == 0.0 else flow.values_at(dt)
+    d = evaluate(comp.left, values) - evaluate(comp.right, values)
+    if abs(d) > zt:  # off the boundary: the sign now is the sign right after
+        return 1 if d > 0 else -1
     poly = _comparison_poly(comp, flow)
     if poly is not None:
         return P.sign_after(P.shift(poly, dt) if dt else poly, zt)
@@ -277,25 +307,28 @@ def crossing_time(
     return None
 
 
+# Memo: condition id -> (the condition, its comparisons with the fluents each reads). The
+# condition is kept in the entry, so its id cannot be reused while the entry lives.
+_COMPARISONS: dict[int, tuple[Condition, list[tuple[Comparison, set[int]]]]] = {}
+
+
 def _dynamic_comparisons(cond: Condition, changing: frozenset[int]) -> list[Comparison]:
-    _, _, comps = condition_parts(cond)
-    out = []
-    for c in comps:
-        reads = expr_fluents(c.left) | expr_fluents(c.right)
-        if reads & changing:
-            out.append(c)
-    return out
+    hit = _COMPARISONS.get(id(cond))
+    if hit is None or hit[0] is not cond:
+        if len(_COMPARISONS) > 100_000:
+            _COMPARISONS.clear()
+        comps = condition_parts(cond)[2]
+        hit = (cond, [(c, expr_fluents(c.left) | expr_fluents(c.right)) for c in comps])
+        _COMPARISONS[id(cond)] = hit
+    return [c for c, reads in hit[1] if reads & changing]
 
 
 def _candidate_times(comps: list[Comparison], flow: Flow, horizon: float) -> Iterator[float]:
     """Every dt in (0, horizon] where some comparison's difference is 0, ascending."""
     times: set[float] = set()
-    zt = flow.config.zero_tol
     if flow.exact:
         for c in comps:
-            poly = _comparison_poly(c, flow)
-            if poly is not None:
-                times.update(P.positive_roots(poly, horizon, zt))
+            times.update(r for r in _comparison_roots(c, flow) if r <= horizon)
         yield from sorted(times)
     else:
         yield from _numeric_candidates(comps, flow, horizon)

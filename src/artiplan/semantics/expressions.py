@@ -161,6 +161,23 @@ def compile_condition(cond: Condition, tol: Tolerances = EXACT) -> CondFn:
         return lambda f, v: holds_values(cond, f, v, tol)
 
 
+def compile_near(cond: Condition, zero_tol: float) -> ExprFn:
+    """A fast test ``values -> bool``: is any comparison of ``cond`` within ``zero_tol`` of its
+    boundary? (Returns a float-compatible bool; False when ``cond`` has no comparison.)"""
+    comps = condition_parts(cond)[2]
+    if not comps:
+        return lambda v: False
+    terms = " or ".join(
+        f"abs({_expr_src(c.left)} - {_expr_src(c.right)}) <= {zero_tol!r}" for c in comps
+    )
+    try:
+        return eval(f"lambda v: {terms}", {})
+    except (RecursionError, SyntaxError, MemoryError):
+        return lambda v: any(
+            abs(evaluate(c.left, v) - evaluate(c.right, v)) <= zero_tol for c in comps
+        )
+
+
 # ---------------------------------------------------------------------------- introspection
 
 

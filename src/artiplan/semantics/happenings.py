@@ -27,8 +27,10 @@ from artiplan.semantics.dynamics import DEFAULT_FLOW, Flow, FlowConfig, right_ho
 from artiplan.semantics.expressions import (
     EXACT,
     CondFn,
+    ExprFn,
     Tolerances,
     compile_condition,
+    compile_near,
     condition_parts,
     evaluate,
     holds_values,
@@ -104,9 +106,16 @@ def _process_facts(flow: Flow, state: State) -> State:
     return state if new.facts == state.facts else new
 
 
-def _compile_events(task: Task, tol: Tolerances) -> list[tuple[GroundAction, CondFn, set[int]]]:
+def _compile_events(
+    task: Task, tol: Tolerances, zero_tol: float
+) -> list[tuple[GroundAction, CondFn, set[int], ExprFn]]:
     return [
-        (e, compile_condition(e.precondition, tol), condition_parts(e.precondition)[1])
+        (
+            e,
+            compile_condition(e.precondition, tol),
+            condition_parts(e.precondition)[1],
+            compile_near(e.precondition, zero_tol),
+        )
         for e in task.events
     ]
 
@@ -123,7 +132,9 @@ def fire_events(
     order) and the flow that starts there. Raises :class:`EventError` when an event is
     triggered twice.
     """
-    compiled = per_task(task, ("events", tol), lambda: _compile_events(task, tol))
+    compiled = per_task(
+        task, ("events", tol, config.zero_tol), lambda: _compile_events(task, tol, config.zero_tol)
+    )
     fired: list[GroundAction] = []
     seen: set[int] = set()
     for _ in range(len(task.events) + 2 * len(task.processes) + 2):
@@ -134,9 +145,9 @@ def fire_events(
             continue
         triggered = [
             (k, e)
-            for k, (e, fn, reads) in enumerate(compiled)
+            for k, (e, fn, reads, near) in enumerate(compiled)
             if fn(state.facts, state.values)
-            or (reads & flow.changing and right_holds(e.precondition, flow))
+            or (reads & flow.changing and near(state.values) and right_holds(e.precondition, flow))
         ]
         if not triggered:
             return state, fired, flow

@@ -84,20 +84,24 @@ def advance(
     config: FlowConfig = DEFAULT_FLOW,
     max_steps: int = 100_000,
     on_event: Callable[[float, GroundAction, State], None] | None = None,
+    flow: Flow | None = None,
 ) -> AdvanceResult:
     """Let time pass from ``state.time`` to ``until`` [s], firing events exactly.
 
     Events that hold at ``state.time`` fire first; events whose precondition becomes true at
     exactly ``until`` fire too (before any action there). ``on_event(time, event, state)`` is
-    called after each firing round (``state`` after that round's cascade).
+    called after each firing round (``state`` after that round's cascade). Pass ``flow`` (the
+    flow ``fire_events`` returned for ``state``) when ``state`` is already settled, to skip
+    settling it again.
     Raises ``EventError`` (an event triggered twice) or ``InvalidPlanError`` (too many critical
     instants before ``until``: Zeno behaviour).
     """
     if until < state.time - TIME_EPS:
         raise ValueError(f"cannot advance backwards from {state.time} to {until}")
     result = AdvanceResult(state)
-    state, fired, flow = fire_events(task, state, tol, config)
-    _record(result, state, fired, on_event)
+    if flow is None or flow.start is not state:
+        state, fired, flow = fire_events(task, state, tol, config)
+        _record(result, state, fired, on_event)
     for _ in range(max_steps):
         remaining = until - state.time
         if remaining <= TIME_EPS:

@@ -244,7 +244,7 @@ def _run_happenings(run: _Run, plan: Plan, state: State, traj: Trajectory) -> St
     flow = None
     for index, ((t, _), acts) in enumerate(zip(groups, resolved, strict=True), 1):
         try:
-            res = advance(task, state, t, run.tol, run.config, on_event=cb)
+            res = advance(task, state, t, run.tol, run.config, on_event=cb, flow=flow)
         except EventError as exc:
             raise _fail("event", str(exc), index, exc.time) from None
         traj.segments.extend(res.segments)
@@ -266,7 +266,7 @@ def _run_happenings(run: _Run, plan: Plan, state: State, traj: Trajectory) -> St
         # An empty plan settles the initial state; an explicit end lets time run to it.
         until = max(last, plan.end or 0.0)
         try:
-            res = advance(task, state, until, run.tol, run.config, on_event=cb)
+            res = advance(task, state, until, run.tol, run.config, on_event=cb, flow=flow)
         except EventError as exc:
             raise _fail("event", str(exc), len(groups) + 1, exc.time) from None
         traj.segments.extend(res.segments)
