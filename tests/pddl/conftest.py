@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+from pathlib import Path
+
 import pytest
 
 #: A UCM-like domain in the paper's style (Fig. 6-7): `?l1 -link` without a space, a process
@@ -64,3 +66,13 @@ def arm_domain() -> str:
 @pytest.fixture
 def arm_problem() -> str:
     return ARM_PROBLEM
+
+
+@pytest.fixture(scope="session")
+def suite_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
+    """The project's 240-problem suite, written by ``artiplan.encoding.write_suite``."""
+    from artiplan.encoding import write_suite
+
+    out = tmp_path_factory.mktemp("suite")
+    write_suite(out)
+    return out

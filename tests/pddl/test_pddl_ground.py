@@ -2,8 +2,12 @@
 
 from __future__ import annotations
 
+from math import comb
 from pathlib import Path
 
+import pytest
+
+from artiplan.errors import InputError
 from artiplan.pddl import load_task, parse_domain, parse_problem
 from artiplan.pddl.task import (
     TRUE,
@@ -155,3 +159,45 @@ def test_undefined_static_fluent_comparison_is_false() -> None:
     task = load_task(domain, problem)
     assert [a.signature for a in task.actions if a.name == "paint"] == ["(paint r2)"]
     assert task.fluents == ()  # (cost r2) is static: folded into the condition, which is true
+
+
+@pytest.mark.parametrize("n", [3, 8, 12])
+def test_suite_ng_counts_follow_the_encoding(suite_dir: Path, n: int) -> None:
+    task = load_task(suite_dir / "ng" / "domain.pddl", suite_dir / "ng" / f"p{n}-1.pddl")
+    # start/stop x increase/decrease for n-1 neighbour pairs x 2 planes, plus `observe`.
+    assert task.stats.actions == 8 * (n - 1) + 1
+    # back-to-zero / back-to-360 for every link and plane.
+    assert task.stats.events == 2 * 2 * n
+    # move-increase/decrease for L2..Ln (L1 is never rotated: pruned) x 2 planes, and
+    # propagate-increase/decrease for the C(n-1, 2) `affects` pairs x 2 planes.
+    assert task.stats.processes == 4 * (n - 1) + 4 * comb(n - 1, 2)
+    assert len(task.fluents) >= 2 * n
+    assert task.init_values[task.fluent_index(f"angle(L{n},z-axis)")] is not None
+
+
+def test_paper_fig7_process_as_published() -> None:
+    """The paper's Fig. 7 verbatim: its `zaxis` typo is an error at the token; corrected, the
+    fact the process sets is accepted with a warning."""
+    fig7 = """(:process gravity-increase
+:parameters (?l1 - link)
+:precondition (and
+    (free-to-move ?l1)
+    (> (angle ?l1 z-axis) 180)
+    (< (angle ?l1 z-axis) 360))
+:effect (and
+    (increase
+        (angle ?l1 zaxis) (* #t (speed-g)))
+    (increasing-angle-gravity ?l1)))"""
+    head = """(define (domain fig7) (:requirements :typing :fluents :time)
+(:types link plane) (:constants z-axis - plane)
+(:predicates (free-to-move ?l - link) (increasing-angle-gravity ?l - link))
+(:functions (angle ?l - link ?p - plane) (speed-g))
+"""
+    with pytest.raises(InputError) as info:
+        parse_domain(head + fig7 + ")", "fig7.pddl")
+    assert info.value.location is not None
+    assert (info.value.location.line, info.value.location.column) == (13, 20)
+    assert info.value.found == "zaxis"
+    domain = parse_domain(head + fig7.replace("zaxis", "z-axis") + ")", "fig7.pddl")
+    assert len(domain.warnings) == 1 and "fig7.pddl:14:5: process 'gravity-increase' sets" \
+        in domain.warnings[0]

@@ -4,8 +4,6 @@ from __future__ import annotations
 
 from pathlib import Path
 
-import pytest
-
 from artiplan.pddl import parse_domain, parse_problem, write_domain, write_problem
 from artiplan.pddl import syntax as s
 
@@ -100,14 +98,6 @@ def test_predicate_named_at_is_an_atom_not_a_time_specifier() -> None:
     pre = dom.operators[0].precondition
     assert isinstance(pre, s.Conjunction)
     assert pre.parts[0] == s.AtomicFormula("at", (s.Variable("?v"), s.Variable("?from")))
-
-
-@pytest.fixture(scope="module")
-def suite_dir(tmp_path_factory: pytest.TempPathFactory) -> Path:
-    encoding = pytest.importorskip("artiplan.encoding")
-    out = tmp_path_factory.mktemp("suite")
-    encoding.write_suite(out)
-    return out
 
 
 def test_suite_files_round_trip(suite_dir: Path) -> None:
