@@ -1,59 +1,58 @@
 """Turn other planners' plan text into artiplan's :class:`~artiplan.semantics.plan.Plan`.
 
-The readers themselves live in :mod:`artiplan.semantics.plan_io`; this module only picks the
-right one for each backend's output.
+The readers live in :mod:`artiplan.semantics.plan_io`. ENHSP and Kairos apply actions that share
+a time stamp one after the other; VAL (and artiplan's validator) applies them in parallel, and a
+"stop X, start Y" pair at one instant is then a mutex violation. :func:`sequentialise` keeps the
+planner's meaning by spreading such actions 1 ms apart, as the conventions prescribe for plans
+meant in sequence; the validator then judges the result.
 """
 
 from __future__ import annotations
 
-import re
-from typing import TYPE_CHECKING
+import dataclasses
 
-if TYPE_CHECKING:
-    from artiplan.semantics.plan import Plan
+from artiplan.semantics.plan import Plan, TimedAction
+from artiplan.semantics.plan_io import parse_enhsp_output, parse_plan
+
+#: Separation of actions meant in sequence at one instant [s] (> VAL's tolerance 0.001).
+SEQUENCE_GAP = 0.001
 
 
-def plan_from_enhsp(text: str) -> Plan:
-    """A plan from ENHSP's output (``t: (action)``, ``-----waiting----``, ``@PlanEND`` lines)."""
-    try:
-        from artiplan.semantics.plan_io import read_enhsp_output
-    except ImportError:  # until the semantics stage lands
-        return _interim_read(text)
-    return read_enhsp_output(text)
+def sequentialise(plan: Plan, gap: float = SEQUENCE_GAP) -> tuple[Plan, int]:
+    """Spread actions with equal (or decreasing) times ``gap`` apart, in their order.
+
+    Returns the new plan and how many actions moved. The plan's end moves with its last action.
+    """
+    actions: list[TimedAction] = []
+    moved = 0
+    for action in plan.actions:
+        if actions and action.time < actions[-1].time + gap - 1e-9:
+            action = dataclasses.replace(action, time=round(actions[-1].time + gap, 6))
+            moved += 1
+        actions.append(action)
+    end = plan.end
+    if end is not None and actions and end < actions[-1].time:
+        end = actions[-1].time
+    return dataclasses.replace(plan, actions=tuple(actions), end=end), moved
+
+
+def plan_from_enhsp(text: str) -> tuple[Plan, int]:
+    """A plan from ENHSP's printed output, sequentialised; and how many actions moved."""
+    return sequentialise(parse_enhsp_output(text))
+
+
+def plan_from_ipc(text: str) -> tuple[Plan, int]:
+    """A plan in the IPC/VAL format (``t: (a) [d]``, ``T: @PlanEND``), sequentialised.
+
+    Zero durations (Kairos writes ``[0.000]`` on instantaneous actions) are dropped.
+    """
+    plan = parse_plan(text, "<planner output>")
+    instant = tuple(
+        dataclasses.replace(a, duration=None) if a.duration == 0 else a for a in plan.actions
+    )
+    return sequentialise(dataclasses.replace(plan, actions=instant))
 
 
 def plan_from_val(text: str) -> Plan:
-    """A plan in VAL's format (``t: (name args) [d]`` lines, ``;`` comments)."""
-    try:
-        from artiplan.semantics.plan_io import read_val_plan
-    except ImportError:  # until the semantics stage lands
-        return _interim_read(text)
-    return read_val_plan(text)
-
-
-_LINE = re.compile(r"^\s*([0-9.eE+-]+)\s*:\s*(\(.*?\)|@PlanEND|-----waiting----)")
-
-
-def _interim_read(text: str) -> Plan:
-    """A minimal reader used only until :mod:`artiplan.semantics.plan_io` exists.
-
-    Same-instant actions are spread by 1 ms (VAL applies same-time actions in parallel), and a
-    final ``@PlanEND`` after the last action becomes an ``observe`` action at that time.
-    """
-    from artiplan.semantics.plan import Plan, TimedAction
-
-    actions: list[TimedAction] = []
-    for line in text.splitlines():
-        match = _LINE.match(line.split(";", 1)[0])
-        if match is None or match.group(2).startswith("-"):
-            continue
-        time = float(match.group(1))
-        if actions and time <= actions[-1].time:
-            time = actions[-1].time + 0.001
-        if match.group(2) == "@PlanEND":
-            if not actions or time > actions[-1].time + 1e-9:
-                actions.append(TimedAction(time, "observe"))
-            continue
-        name, *args = match.group(2)[1:-1].split()
-        actions.append(TimedAction(time, name, tuple(args)))
-    return Plan(tuple(actions))
+    """A plan in VAL's format as artiplan writes it (no conversion needed)."""
+    return parse_plan(text, "<artiplan plan>")

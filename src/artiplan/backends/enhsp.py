@@ -108,6 +108,7 @@ def _result(outcome: RunOutcome) -> BackendResult:
     status, message = _status(outcome, text)
     plan = None
     plan_text = ""
+    moved = 0
     if status is PlanStatus.SOLVED:
         block = _PLAN_BLOCK.search(outcome.stdout + "\n\n")
         plan_text = block.group(1) if block else ""
@@ -115,7 +116,7 @@ def _result(outcome: RunOutcome) -> BackendResult:
         if elapsed:  # when the goal is reached by a process after the last action
             plan_text += f"\n{elapsed.group(1)}: @PlanEND"
         try:
-            plan = plan_from_enhsp(plan_text)
+            plan, moved = plan_from_enhsp("Found Plan:\n" + plan_text)
         except Exception as exc:  # an unreadable plan is the planner's error, not ours
             status, message = PlanStatus.ERROR, f"cannot read ENHSP's plan: {exc}"
     return BackendResult(
@@ -124,5 +125,5 @@ def _result(outcome: RunOutcome) -> BackendResult:
         returncode=outcome.returncode, message=message,
         # ENHSP prints "Problem Solved" only after re-simulating the extracted plan with its
         # execution delta and reaching the goal: its own (discretised) validation.
-        extra={"enhsp_accepts": status is PlanStatus.SOLVED},
+        extra={"enhsp_accepts": status is PlanStatus.SOLVED, "shifted_actions": moved},
     )

@@ -9,13 +9,12 @@ first plan). Kairos's exit codes: 0 solved, 10 unsolvable (proved), 11 timeout, 
 from __future__ import annotations
 
 import math
-import re
 import shutil
 import sys
 from pathlib import Path
 
 from artiplan.backends.base import BackendResult, Planner, PlanStatus
-from artiplan.backends.convert import plan_from_enhsp
+from artiplan.backends.convert import plan_from_ipc
 from artiplan.backends.runner import Limits, run_limited
 from artiplan.errors import ExternalToolError
 
@@ -27,8 +26,6 @@ _EXIT_STATUS = {
     14: PlanStatus.NO_PLAN,
 }
 
-#: An action line of Kairos's IPC output: ``0.000: (start-increase l1 l2 z) [0.000]``.
-_ZERO_DURATION = re.compile(r"\s*\[0(?:\.0*)?\]\s*$", re.M)
 
 
 def kairos_program() -> str:
@@ -86,16 +83,17 @@ class KairosPlanner(Planner):
             status = _EXIT_STATUS.get(outcome.returncode, PlanStatus.ERROR)
             message = "" if status is PlanStatus.SOLVED else _last_line(outcome.stderr)
         plan = None
+        moved = 0
         plan_text = outcome.stdout if status is PlanStatus.SOLVED else ""
         if status is PlanStatus.SOLVED:
             try:
-                plan = plan_from_enhsp(_ZERO_DURATION.sub("", plan_text))
+                plan, moved = plan_from_ipc(plan_text)
             except Exception as exc:  # an unreadable plan is the planner's error, not ours
                 status, message = PlanStatus.ERROR, f"cannot read Kairos's plan: {exc}"
         return BackendResult(
             status=status, plan=plan, cpu_s=outcome.cpu_s, wall_s=outcome.wall_s,
             peak_mb=outcome.peak_mb, raw_output=text, plan_text=plan_text,
-            returncode=outcome.returncode, message=message,
+            returncode=outcome.returncode, message=message, extra={"shifted_actions": moved},
         )
 
 

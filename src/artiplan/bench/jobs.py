@@ -43,11 +43,9 @@ class Verdict:
 
 def check_plan(domain_path: str, problem_path: str, plan: Plan) -> Verdict:
     """Validate ``plan`` with artiplan's validator (VAL's semantics, tolerance 0.001)."""
-    try:
-        from artiplan.pddl import load_task
-        from artiplan.semantics import validate
-    except ImportError as exc:  # a stage not built yet: say so, never guess
-        return Verdict(None, f"validator unavailable: {exc}")
+    from artiplan.pddl import load_task
+    from artiplan.semantics import validate
+
     try:
         task = load_task(domain_path, problem_path)
         report = validate(task, plan, tolerance=TOLERANCE)
@@ -69,14 +67,12 @@ def plan_text(plan: Plan | None, fallback: str) -> str:
     """The plan in VAL's format (artiplan's writer), or the planner's own text."""
     if plan is None:
         return fallback
-    try:
-        from artiplan.semantics.plan_io import write_val_plan
-    except ImportError:
-        return fallback
-    try:
-        return str(write_val_plan(plan))
-    except Exception:
-        return fallback
+    from artiplan.semantics.plan_io import format_plan, format_time
+
+    text = format_plan(plan, events=False)
+    if plan.end is not None and plan.end > max((a.time for a in plan.actions), default=-1.0):
+        text += f"{format_time(plan.end)}: @PlanEND\n"  # read back as Plan.end by plan_io
+    return text
 
 
 def run_job(job: Job) -> dict[str, Any]:
