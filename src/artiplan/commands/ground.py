@@ -11,6 +11,7 @@ from artiplan.pddl import ground, load_domain, load_problem
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Options of ``artiplan ground``."""
     parser.add_argument("domain", help="PDDL+ domain file")
     parser.add_argument("problem", help="PDDL+ problem file")
     parser.add_argument("--list", action="store_true", dest="list_operators",
@@ -18,6 +19,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Parse and ground; print counts and times (and the operators with ``--list``)."""
     start = time.perf_counter()
     domain = load_domain(args.domain)
     problem = load_problem(args.problem)

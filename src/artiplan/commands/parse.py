@@ -10,6 +10,7 @@ from artiplan.pddl import check_problem, load_domain, load_problem, write_domain
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
+    """Options of ``artiplan parse``."""
     parser.add_argument("domain", help="PDDL+ domain file")
     parser.add_argument("problem", nargs="?", help="PDDL+ problem file (checked against DOMAIN)")
     parser.add_argument("--print", action="store_true", dest="print_back",
@@ -17,6 +18,7 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 
 
 def run(args: argparse.Namespace) -> int:
+    """Check the files; print a summary or (``--print``) the files back."""
     domain = load_domain(args.domain)
     warnings = list(domain.warnings)
     problem = None

@@ -18,6 +18,7 @@ def fail(message: str, at: SExpr, expected: str | None = None) -> InputError:
 
 
 def expect_list(expr: SExpr, what: str) -> SList:
+    """``expr`` as a list, or an error naming ``what`` was expected."""
     if not isinstance(expr, SList):
         raise fail(f"expected {what}", expr, expected=f"'(' starting {what}")
     return expr
@@ -31,6 +32,7 @@ def expect_name(expr: SExpr, what: str) -> Token:
 
 
 def check_arity(lst: SList, lo: int, hi: int | None, what: str) -> None:
+    """Raise unless ``lst`` has ``lo`` to ``hi`` (None: any number of) arguments."""
     n = len(lst.items) - 1
     if n < lo or (hi is not None and n > hi):
         want = f"{lo}" if hi == lo else f"{lo} or more" if hi is None else f"{lo} to {hi}"
@@ -84,6 +86,7 @@ def _expect_variable(expr: SExpr) -> Token:
 
 
 def read_term(expr: SExpr) -> s.Term:
+    """A ``?variable`` or an object/constant name."""
     if isinstance(expr, Token) and expr.text.startswith("?") and len(expr.text) > 1:
         return s.Variable(expr.text, expr.loc)
     tok = expect_name(expr, "an object, constant or ?variable")
@@ -91,6 +94,7 @@ def read_term(expr: SExpr) -> s.Term:
 
 
 def read_atom(lst: SList) -> s.AtomicFormula:
+    """``(predicate term...)``."""
     name = expect_name(lst.items[0], "a predicate name")
     return s.AtomicFormula(name.text, tuple(read_term(t) for t in lst.items[1:]), lst.loc)
 

@@ -42,18 +42,21 @@ class GroundContext:
     rates: dict[int, s.NumExpr | None] = field(default_factory=dict)
 
     def fact(self, key: Key) -> int:
+        """The id of the fact ``key``, numbering it on first use."""
         i = self.fact_ids.get(key)
         if i is None:
             i = self.fact_ids[key] = len(self.fact_ids)
         return i
 
     def fluent(self, key: Key) -> int:
+        """The id of the fluent ``key``, numbering it on first use."""
         i = self.fluent_ids.get(key)
         if i is None:
             i = self.fluent_ids[key] = len(self.fluent_ids)
         return i
 
     def objects_of(self, types: tuple[str, ...]) -> tuple[str, ...]:
+        """Objects of a type, or of the union of an ``either`` list."""
         if len(types) <= 1:
             return self.objects_by_type.get(types[0].lower() if types else g.ROOT_TYPE, ())
         merged: dict[str, None] = {}
@@ -62,10 +65,12 @@ class GroundContext:
         return tuple(merged)
 
     def name(self, key: Key) -> str:
+        """``(name arg...)`` in the files' spelling."""
         return "(" + " ".join(self.display.get(k, k) for k in key) + ")"
 
 
 def term_value(term: s.Term, binding: Binding) -> str:
+    """The lower-case object a term denotes under ``binding``."""
     key = term.name.lower()
     if isinstance(term, s.Variable):
         return binding[key]
@@ -73,6 +78,7 @@ def term_value(term: s.Term, binding: Binding) -> str:
 
 
 def atom_key(atom: s.AtomicFormula, binding: Binding) -> Key:
+    """The lower-case key ``(predicate, object...)`` of a ground atom."""
     return (atom.predicate.lower(), *(term_value(a, binding) for a in atom.args))
 
 
@@ -155,6 +161,7 @@ class EffectParts:
     continuous: list[t.ContinuousEffect] = field(default_factory=list)
 
     def effect(self) -> t.Effect:
+        """The collected instantaneous parts as a task ``Effect`` (duplicates dropped)."""
         return t.Effect(tuple(dict.fromkeys(self.add)), tuple(dict.fromkeys(self.delete)),
                         tuple(self.numeric), tuple(self.conditional))
 

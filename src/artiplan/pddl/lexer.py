@@ -24,9 +24,11 @@ class Token:
 
     @property
     def lower(self) -> str:
+        """The text lower-cased (PDDL names are case-insensitive)."""
         return self.text.lower()
 
     def is_number(self) -> bool:
+        """True if the token reads as a number."""
         return _NUMBER.match(self.text) is not None
 
 

@@ -18,6 +18,7 @@ class Renumbering:
     fluents: dict[int, int] | None  # None: fluents keep their numbers
 
     def condition(self, c: t.Condition) -> t.Condition:
+        """``c`` renumbered and simplified."""
         if isinstance(c, t.Atom):
             return self.facts[c.fact]
         if isinstance(c, t.And):
@@ -31,6 +32,7 @@ class Renumbering:
         return c
 
     def num(self, e: t.NumExpr) -> t.NumExpr:
+        """``e`` with fluents renumbered."""
         if self.fluents is None or isinstance(e, t.Const):
             return e
         if isinstance(e, t.FluentRef):
@@ -63,6 +65,7 @@ class Renumbering:
         return t.Effect(tuple(add), tuple(delete), tuple(numeric), tuple(conditional))
 
     def continuous(self, effects: Iterable[t.ContinuousEffect]) -> tuple[t.ContinuousEffect, ...]:
+        """Continuous effects with fluents renumbered."""
         if self.fluents is None:
             return tuple(effects)
         return tuple(t.ContinuousEffect(self.fluents[c.fluent], self.num(c.rate))
@@ -95,6 +98,7 @@ def deleted_facts(effects: Iterable[t.Effect]) -> set[int]:
 
 
 def fluents_in_num(e: t.NumExpr) -> Iterator[int]:
+    """Fluent ids read by ``e``."""
     if isinstance(e, t.FluentRef):
         yield e.index
     elif isinstance(e, t.BinOp):
@@ -105,6 +109,7 @@ def fluents_in_num(e: t.NumExpr) -> Iterator[int]:
 
 
 def fluents_in_condition(c: t.Condition) -> Iterator[int]:
+    """Fluent ids read by ``c``."""
     if isinstance(c, t.Comparison):
         yield from fluents_in_num(c.left)
         yield from fluents_in_num(c.right)
@@ -116,6 +121,7 @@ def fluents_in_condition(c: t.Condition) -> Iterator[int]:
 
 
 def fluents_in_effect(e: t.Effect) -> Iterator[int]:
+    """Fluent ids read or changed by ``e``."""
     for n in e.numeric:
         yield n.fluent
         yield from fluents_in_num(n.expr)

@@ -40,6 +40,7 @@ class Scope:
         self.features: set[str] = set()
 
     def check_atom(self, atom: s.AtomicFormula, variables: dict[str, tuple[str, ...]]) -> None:
+        """Raise unless ``atom`` names a declared predicate with fitting arguments."""
         sig = self.predicates.get(atom.predicate.lower())
         if sig is None:
             raise InputError(f"undeclared predicate '{atom.predicate}'", atom.loc,
@@ -47,6 +48,7 @@ class Scope:
         self._check_args(sig, atom.args, variables, atom.loc, "predicate")
 
     def check_function(self, term: s.FunctionTerm, variables: dict[str, tuple[str, ...]]) -> None:
+        """Raise unless ``term`` names a declared function with fitting arguments."""
         sig = self.functions.get(term.name.lower())
         if sig is None:
             raise InputError(f"undeclared function '{term.name}'", term.loc,
@@ -54,6 +56,7 @@ class Scope:
         self._check_args(sig, term.args, variables, term.loc, "function")
 
     def term_type(self, term: s.Term, variables: dict[str, tuple[str, ...]]) -> tuple[str, ...]:
+        """The declared type of a variable or object (raises if undeclared)."""
         key = term.name.lower()
         if isinstance(term, s.Variable):
             if key not in variables:

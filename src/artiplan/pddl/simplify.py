@@ -60,6 +60,7 @@ def make_or(parts: Iterable[t.Condition]) -> t.Condition:
 
 
 def make_not(c: t.Condition) -> t.Condition:
+    """``Not``, folding truth values and double negation."""
     if isinstance(c, t.Truth):
         return t.Truth(not c.value)
     if isinstance(c, t.Not):

@@ -119,24 +119,28 @@ class Equals:
 
 @dataclass(frozen=True)
 class Negation:
+    """``(not f)``."""
     operand: Formula
     loc: SourceLocation | None = _loc()
 
 
 @dataclass(frozen=True)
 class Conjunction:
+    """``(and f...)``; ``()`` reads as an empty conjunction."""
     parts: tuple[Formula, ...]
     loc: SourceLocation | None = _loc()
 
 
 @dataclass(frozen=True)
 class Disjunction:
+    """``(or f...)``."""
     parts: tuple[Formula, ...]
     loc: SourceLocation | None = _loc()
 
 
 @dataclass(frozen=True)
 class Implication:
+    """``(imply premise conclusion)``."""
     premise: Formula
     conclusion: Formula
     loc: SourceLocation | None = _loc()
@@ -182,6 +186,7 @@ Formula = (
 
 @dataclass(frozen=True)
 class AddEffect:
+    """An atom made true."""
     atom: AtomicFormula
     loc: SourceLocation | None = _loc()
 
@@ -206,12 +211,14 @@ class NumericAssignment:
 
 @dataclass(frozen=True)
 class EffectConjunction:
+    """``(and effect...)``."""
     parts: tuple[EffectNode, ...]
     loc: SourceLocation | None = _loc()
 
 
 @dataclass(frozen=True)
 class ForallEffect:
+    """``(forall (vars) effect)``."""
     variables: tuple[TypedName, ...]
     body: EffectNode
     loc: SourceLocation | None = _loc()
@@ -219,6 +226,7 @@ class ForallEffect:
 
 @dataclass(frozen=True)
 class WhenEffect:
+    """``(when condition effect)``."""
     condition: Formula
     effect: EffectNode
     loc: SourceLocation | None = _loc()
@@ -234,6 +242,7 @@ EffectNode = (
 
 @dataclass(frozen=True)
 class PredicateDecl:
+    """A predicate declaration ``(name ?x - type ...)``."""
     name: str
     parameters: tuple[TypedName, ...] = ()
     loc: SourceLocation | None = _loc()
@@ -302,6 +311,7 @@ InitElement = AtomicFormula | InitValue
 
 @dataclass(frozen=True)
 class MetricSpec:
+    """``(:metric minimize|maximize expr)``."""
     direction: Literal["minimize", "maximize"]
     expr: NumExpr
     loc: SourceLocation | None = _loc()

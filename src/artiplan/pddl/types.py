@@ -17,6 +17,7 @@ class TypeHierarchy:
 
     @classmethod
     def of(cls, domain: s.Domain) -> TypeHierarchy:
+        """The hierarchy declared by ``domain`` (undeclared parents become types)."""
         parents: dict[str, set[str]] = {g.ROOT_TYPE: set()}
         for decl in domain.types:
             parents.setdefault(decl.name.lower(), set()).update(x.lower() for x in decl.types)

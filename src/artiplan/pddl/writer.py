@@ -19,6 +19,7 @@ def fmt_number(value: float) -> str:
 
 
 def fmt_type(types: tuple[str, ...]) -> str:
+    """``t`` or ``(either t u)``."""
     return types[0] if len(types) == 1 else "(either " + " ".join(types) + ")"
 
 
@@ -42,6 +43,7 @@ def fmt_typed(names: tuple[s.TypedName, ...]) -> str:
 
 
 def fmt_term(term: s.Term) -> str:
+    """A term as written."""
     return term.name
 
 
@@ -59,6 +61,7 @@ def fmt_num(e: s.NumExpr) -> str:
 
 
 def fmt_atom(a: s.AtomicFormula) -> str:
+    """``(predicate term...)``."""
     return "(" + " ".join((a.predicate, *(fmt_term(t) for t in a.args))) + ")"
 
 
