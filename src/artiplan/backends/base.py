@@ -12,36 +12,14 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-try:
-    from artiplan.search.api import PlanStatus
-except ImportError:  # pragma: no cover - until the search stage lands; same members
-    from enum import Enum
-
-    class PlanStatus(Enum):  # type: ignore[no-redef]
-        SOLVED = "solved"
-        UNSOLVABLE_PROVEN = "unsolvable"
-        NO_PLAN = "no-plan"
-        TIMEOUT = "timeout"
-        MEMOUT = "memout"
-        ERROR = "error"
+from artiplan.search.api import PlanStatus
 
 if TYPE_CHECKING:
     from artiplan.semantics.plan import Plan
 
-#: Status names used in result rows and reports (JSON-friendly), one per ``PlanStatus``.
-STATUS_NAMES: dict[str, str] = {
-    "SOLVED": "solved",
-    "UNSOLVABLE_PROVEN": "unsolvable",
-    "NO_PLAN": "no-plan",
-    "TIMEOUT": "timeout",
-    "MEMOUT": "memout",
-    "ERROR": "error",
-}
-
-
 def status_name(status: PlanStatus) -> str:
-    """The short name of a status as written in result rows (``solved``, ``timeout``, ...)."""
-    return STATUS_NAMES[status.name]
+    """The short name of a status as written in result rows (``solved``, ``no-plan``, ...)."""
+    return str(status.value)
 
 
 @dataclass(frozen=True)
