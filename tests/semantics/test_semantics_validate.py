@@ -177,3 +177,13 @@ def test_goal_reached_via_event_fact() -> None:
     assert report.valid, report.reason
     assert report.events[0].time == pytest.approx(2.0, abs=1e-9)
     assert not report.events[0].after_actions
+
+
+def test_simulate_can_predict_past_the_plans_end() -> None:
+    task = uacm_task(90.0, acc=2.0, threshold=45.0)
+    traj = simulate(task, Plan((observe(1.0),)), extend=10.0, sample_dt=1.0)
+    assert [e.name for e in traj.events] == ["landed"]  # at sqrt(45) = 6.7 s, after the end
+    assert abs(traj.events[0].time - math.sqrt(45.0)) < 1e-9
+    assert traj.value("(angle L2 z-axis)", 7.0) == pytest.approx(41.0, abs=1e-9)
+    assert max(r.time for r in traj.rows if r.kind == "sample") == 11.0
+    assert traj.final_state is not None and traj.final_state.time == 1.0

@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 from artiplan.errors import InvalidPlanError
 from artiplan.pddl.task import Condition, GroundAction, Task
 from artiplan.semantics.cache import per_task
-from artiplan.semantics.dynamics import DEFAULT_FLOW, FlowConfig
+from artiplan.semantics.dynamics import DEFAULT_FLOW, Flow, FlowConfig
 from artiplan.semantics.expressions import (
     VAL_TOLERANCES,
     CondFn,
@@ -138,9 +138,11 @@ def _condition_failure(
     values: dict[str, float] = {}
     for p in parts:
         values.update(fluent_values(p, run.task, state.values))
+    undefined = [n for n, v in values.items() if v != v]  # nan: never given a value
+    note = f" (undefined: {', '.join(undefined)})" if undefined else ""
     return _fail(
         "goal" if index < 0 else "precondition",
-        f"{what} at time {state.time:.6f}: {text} is false",
+        f"{what} at time {state.time:.6f}: {text} is false{note}",
         max(index, 0),
         state.time,
         condition=text,
@@ -189,21 +191,43 @@ def run_plan(
     config: FlowConfig = DEFAULT_FLOW,
     tolerance: float = 0.001,
     check: bool = True,
+    extend: float = 0.0,
 ) -> ValidationReport:
-    """Simulate ``plan``; with ``check`` also judge it (module docstring)."""
+    """Simulate ``plan``; with ``check`` also judge it (module docstring).
+
+    ``extend`` [s]: keep simulating (events included) that long after the plan's end, so the
+    trajectory predicts what happens next; the goal is still checked at the plan's end.
+    """
     run = _Run(task, tol, config, tolerance, check)
     traj = Trajectory(task.fluents)
     state = initial_state(task)
     traj.rows.append(TrajectoryRow(0.0, "init", state.values, "init"))
     report = ValidationReport(True, trajectory=traj, events=traj.events)
     try:
-        state = _run_happenings(run, plan, state, traj)
+        state, flow = _run_happenings(run, plan, state, traj)
+        traj.final_state = state
         if check and not holds_values(task.goal, state.facts, state.values, tol):
             n = len(_groups(plan))
             where = (
                 f"the plan's end ({state.time:.6f})" if plan.end else f"the last happening ({n})"
             )
             raise _condition_failure(run, task.goal, state, f"goal at {where}", -1, None)
+        if extend > 0:
+            try:
+                res = advance(
+                    task,
+                    state,
+                    state.time + extend,
+                    tol,
+                    config,
+                    on_event=_on_event(traj),
+                    flow=flow,
+                )
+            except EventError as exc:
+                raise _fail("event", str(exc), len(_groups(plan)) + 1, exc.time) from None
+            traj.segments.extend(res.segments)
+            state, flow = res.state, res.flow  # type: ignore[assignment]
+        traj.segments.append(Segment(state.time, float("inf"), flow))
     except _Failure as f:
         report = f.report
         report.trajectory, report.events = traj, traj.events
@@ -220,7 +244,7 @@ def _on_event(
     return cb
 
 
-def _run_happenings(run: _Run, plan: Plan, state: State, traj: Trajectory) -> State:
+def _run_happenings(run: _Run, plan: Plan, state: State, traj: Trajectory) -> tuple[State, Flow]:
     task = run.task
     groups = _groups(plan)
     resolved: list[list[tuple[TimedAction, GroundAction]]] = []
@@ -273,9 +297,8 @@ def _run_happenings(run: _Run, plan: Plan, state: State, traj: Trajectory) -> St
         state, flow = res.state, res.flow
         if until > last:
             traj.rows.append(TrajectoryRow(until, "end", state.values))
-    traj.segments.append(Segment(state.time, float("inf"), flow))  # type: ignore[arg-type]
-    traj.final_state = state
-    return state
+    assert flow is not None
+    return state, flow
 
 
 def validate(
@@ -295,18 +318,21 @@ def simulate(
     plan: Plan,
     sample_dt: float | None = None,
     *,
+    extend: float = 0.0,
     tol: Tolerances = VAL_TOLERANCES,
     config: FlowConfig = DEFAULT_FLOW,
 ) -> Trajectory:
     """The trajectory of ``plan`` (preconditions and goal not checked).
 
+    ``sample_dt`` [s]: add sampled rows; ``extend`` [s]: simulate on after the plan's end.
     Raises InvalidPlanError for an action the task does not know or an event triggered twice.
     """
-    report = run_plan(task, plan, tol=tol, config=config, check=False)
+    report = run_plan(task, plan, tol=tol, config=config, check=False, extend=extend)
     if not report.valid:
         raise InvalidPlanError(report.reason)
     traj = report.trajectory
     assert traj is not None
     if sample_dt:
-        traj.add_samples(sample_dt)
+        end = traj.final_state.time + extend if traj.final_state is not None else None
+        traj.add_samples(sample_dt, end)
     return traj
