@@ -101,6 +101,11 @@ def test_ground_command(files: tuple[Path, Path], capsys: pytest.CaptureFixture[
     assert "facts 11, fluents 6, actions 8, events 6, processes 9, pruned 46" in out
     assert "  (start-increase L1 L2 z-axis)" in out
     assert "  (propagate L2 L3 xy-axes)" in out
+    assert main(["ground", str(d), str(p), "--facts"]) == 0
+    out, _ = capsys.readouterr()
+    assert "  (free-to-move L2)  (initially true)" in out
+    assert "  (in-use)\n" in out
+    assert "  (angle L2 z-axis) = -3\n" in out and "  (angle L3 xy-axes) = 0.001\n" in out
 
 
 def test_bad_input_exits_3_with_location(tmp_path: Path,

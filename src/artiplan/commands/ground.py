@@ -16,6 +16,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("problem", help="PDDL+ problem file")
     parser.add_argument("--list", action="store_true", dest="list_operators",
                         help="print every ground action, event and process")
+    parser.add_argument("--facts", action="store_true", dest="list_facts",
+                        help="print every fact and numeric fluent (with its initial value)")
 
 
 def run(args: argparse.Namespace) -> int:
@@ -38,4 +40,11 @@ def run(args: argparse.Namespace) -> int:
             print(f"{title}:")
             for op in ops:
                 print(f"  {op.signature}")
+    if args.list_facts:
+        print("facts:")
+        for i, name in enumerate(task.facts):
+            print(f"  {name}{'  (initially true)' if i in task.init_facts else ''}")
+        print("fluents:")
+        for name, value in zip(task.fluents, task.init_values, strict=True):
+            print(f"  {name} = {'undefined' if value is None else f'{value:g}'}")
     return int(ExitCode.OK)

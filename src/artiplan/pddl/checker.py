@@ -185,5 +185,5 @@ def requirement_warnings(
         if features is not None and uses and key not in g.UMBRELLA_REQUIREMENTS and not (
             set(uses) & features
         ):
-            out.append(f"{_where(loc)}requirement {r} is declared but not used")
+            out.append(f"{_where(loc)}requirement {r} is declared but not used by the domain")
     return out
