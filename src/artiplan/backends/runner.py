@@ -135,9 +135,9 @@ def run_limited(
     peak = max(peak, rusage.ru_maxrss / 1024.0) if rusage else peak  # ru_maxrss is KiB on Linux
     code = os.waitstatus_to_exitcode(status)
     proc.returncode = code
-    if hit is None and limits.time_limit is not None and code in (
-        -signal.SIGXCPU, -signal.SIGKILL
-    ) and cpu >= 0.95 * limits.time_limit:
+    if hit is None and limits.time_limit is not None and (
+        code == -signal.SIGXCPU or (code == -signal.SIGKILL and cpu >= 0.9 * limits.time_limit)
+    ):
         hit = "time"  # the kernel's RLIMIT_CPU did it
     return RunOutcome(code, stdout, stderr, cpu, wall, peak, hit)
 
