@@ -112,9 +112,6 @@ def _result(outcome: RunOutcome) -> BackendResult:
     if status is PlanStatus.SOLVED:
         block = _PLAN_BLOCK.search(outcome.stdout + "\n\n")
         plan_text = block.group(1) if block else ""
-        elapsed = re.search(r"^Elapsed Time: *([0-9.eE+-]+)", outcome.stdout, re.M)
-        if elapsed:  # when the goal is reached by a process after the last action
-            plan_text += f"\n{elapsed.group(1)}: @PlanEND"
         try:
             plan, moved = plan_from_enhsp("Found Plan:\n" + plan_text)
         except Exception as exc:  # an unreadable plan is the planner's error, not ours
