@@ -111,3 +111,34 @@ def test_uacm_quadratic_fall_and_exact_event_cascade() -> None:
     expected = 359.99 + (t - t2) ** 2 - (t**2 - t2**2)
     assert long.trajectory is not None
     assert long.trajectory.value("angle(L3,z-axis)", t) == pytest.approx(expected, abs=1e-9)
+
+
+FIG7 = """
+(define (domain fig7)
+  (:requirements :strips :typing :numeric-fluents :time)
+  (:types link)
+  (:predicates (free-to-move ?l - link) (increasing-angle-gravity ?l - link))
+  (:functions (angle ?l - link) (speed-g))
+  (:action grab :parameters (?l - link) :precondition (free-to-move ?l)
+     :effect (and (not (free-to-move ?l)) (not (increasing-angle-gravity ?l))))
+  (:action observe :parameters () :precondition (and) :effect (and))
+  (:process gravity-increase
+    :parameters (?l1 - link)
+    :precondition (and (free-to-move ?l1) (> (angle ?l1) 180) (< (angle ?l1) 360))
+    :effect (and (increase (angle ?l1) (* #t (speed-g))) (increasing-angle-gravity ?l1))))
+"""
+FIG7_PROBLEM = """(define (problem q) (:domain fig7) (:objects L2 - link)
+  (:init (free-to-move L2) (= (angle L2) 200) (= (speed-g) 2))
+  (:goal (and (increasing-angle-gravity L2) (> (angle L2) 205))))"""
+
+
+def test_papers_process_with_a_boolean_effect_sets_it_while_active() -> None:
+    task = load_task(FIG7, FIG7_PROBLEM)
+    assert any("gravity-increase" in w for w in task.warnings)
+    ok = validate(task, parse_plan("3: (observe)\n"))  # 206 deg, the fact set by the process
+    assert ok.valid, ok.reason
+    # Grabbing at 1 s stops the process (202 deg) and clears the fact: both goals fail.
+    bad = validate(task, parse_plan("1: (grab L2)\n3: (observe)\n"))
+    assert not bad.valid
+    assert bad.condition == "(increasing-angle-gravity L2) (> (angle L2) 205)"
+    assert bad.values == {"(angle L2)": pytest.approx(202.0)}

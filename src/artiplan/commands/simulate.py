@@ -16,6 +16,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--plot", type=Path, help="write a PNG of the fluents over time")
     parser.add_argument("--trajectory", type=Path, help="write the trajectory CSV here")
     parser.add_argument("--sample", type=float, help="also sample every DT seconds (CSV rows)")
+    parser.add_argument(
+        "--extend",
+        type=float,
+        default=0.0,
+        help="keep simulating this many seconds after the plan's end (a prediction)",
+    )
 
 
 def run(args: argparse.Namespace) -> int:
@@ -25,9 +31,11 @@ def run(args: argparse.Namespace) -> int:
 
     if args.sample is not None and not args.sample > 0:
         raise UsageError(f"--sample must be positive, got {args.sample}")
+    if not args.extend >= 0:
+        raise UsageError(f"--extend must not be negative, got {args.extend}")
     task = load_task(args.domain, args.problem)
     plan = read_plan(args.plan, [e.name for e in task.events])
-    traj = simulate(task, plan, sample_dt=args.sample)
+    traj = simulate(task, plan, sample_dt=args.sample, extend=args.extend)
     print(format_plan(with_events(plan, traj.events)), end="")
     if args.trajectory is not None:
         traj.to_csv(args.trajectory)

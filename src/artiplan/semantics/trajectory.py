@@ -39,6 +39,7 @@ class Trajectory:
             past the plan's last happening).
         events: The events fired, with exact times.
         final_state: The state after the last happening.
+        end: Where the simulation stopped [s] (the plan's end, or later when extended).
     """
 
     fluents: tuple[str, ...]
@@ -46,6 +47,7 @@ class Trajectory:
     segments: list[Segment] = field(default_factory=list)
     events: list[TimedEvent] = field(default_factory=list)
     final_state: State | None = None
+    end: float | None = None
 
     @property
     def columns(self) -> list[str]:

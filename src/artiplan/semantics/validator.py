@@ -228,6 +228,7 @@ def run_plan(
             traj.segments.extend(res.segments)
             state, flow = res.state, res.flow  # type: ignore[assignment]
         traj.segments.append(Segment(state.time, float("inf"), flow))
+        traj.end = state.time
     except _Failure as f:
         report = f.report
         report.trajectory, report.events = traj, traj.events

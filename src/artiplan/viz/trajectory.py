@@ -71,7 +71,7 @@ def plot_trajectory(traj: Trajectory, path: str | Path, title: str = "") -> None
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    last = max((r.time for r in traj.rows), default=0.0)
+    last = max([traj.end or 0.0, *(r.time for r in traj.rows)])
     end = last + max(1.0, 0.05 * last)
     times, values = _curve(traj, end)
     fig, ax = plt.subplots(figsize=(10, 5.5), dpi=110)
