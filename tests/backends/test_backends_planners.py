@@ -65,7 +65,7 @@ def test_cpu_limit_is_enforced_on_a_hard_problem() -> None:
     assert result.status is PlanStatus.TIMEOUT
     assert result.plan is None
     assert limit * 0.9 <= result.cpu_s <= limit + 3.0  # RLIMIT_CPU hard limit is +2 s
-    assert result.wall_s < 2.0 * limit + 10.0
+    assert result.wall_s < 3.0 * limit + 30.0
 
 
 @pytest.mark.slow

@@ -31,7 +31,7 @@ def test_cpu_limit_kills_a_busy_child() -> None:
 def test_wall_watchdog_kills_a_sleeping_child() -> None:
     limits = Limits(time_limit=0.5, wall_factor=1.0, wall_slack=0.5)
     outcome = run_limited([sys.executable, "-c", SLEEPY], limits)
-    assert outcome.limit_hit == "time"
+    assert outcome.limit_hit == "wall"
     assert outcome.wall_s < 5.0 and outcome.cpu_s < 0.5
 
 

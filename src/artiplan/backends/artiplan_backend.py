@@ -13,7 +13,7 @@ from pathlib import Path
 
 from artiplan.backends.base import BackendResult, Planner, PlanStatus
 from artiplan.backends.convert import plan_from_val
-from artiplan.backends.runner import Limits, run_limited
+from artiplan.backends.runner import TIMEOUT_MESSAGES, Limits, run_limited
 from artiplan.errors import ExitCode
 
 _EXIT_STATUS = {
@@ -63,8 +63,8 @@ class ArtiplanPlanner(Planner):
             )
             plan_text = plan_file.read_text() if plan_file.is_file() else ""
         text = outcome.stdout + ("\n" + outcome.stderr if outcome.stderr else "")
-        if outcome.limit_hit == "time":
-            status, message = PlanStatus.TIMEOUT, "CPU-time limit reached"
+        if outcome.limit_hit in ("time", "wall"):
+            status, message = PlanStatus.TIMEOUT, TIMEOUT_MESSAGES[outcome.limit_hit]
         elif outcome.limit_hit == "memory":
             status, message = PlanStatus.MEMOUT, "memory limit reached"
         else:

@@ -14,7 +14,7 @@ from pathlib import Path
 
 from artiplan.backends.base import BackendResult, Planner, PlanStatus
 from artiplan.backends.convert import plan_from_enhsp
-from artiplan.backends.runner import Limits, RunOutcome, run_limited
+from artiplan.backends.runner import TIMEOUT_MESSAGES, Limits, RunOutcome, run_limited
 from artiplan.errors import ExternalToolError
 
 #: Share of the memory limit given to the JVM heap (-Xmx); the rest is the JVM's own memory
@@ -90,8 +90,8 @@ _PLAN_BLOCK = re.compile(r"Found Plan:\n(.*?)\n\s*\n", re.S)
 
 def _status(outcome: RunOutcome, text: str) -> tuple[PlanStatus, str]:
     """ENHSP's verdict from its exit and output."""
-    if outcome.limit_hit == "time":
-        return PlanStatus.TIMEOUT, "CPU-time limit reached"
+    if outcome.limit_hit in ("time", "wall"):
+        return PlanStatus.TIMEOUT, TIMEOUT_MESSAGES[outcome.limit_hit]
     if outcome.limit_hit == "memory" or "OutOfMemoryError" in text:
         return PlanStatus.MEMOUT, "memory limit reached"
     if "Problem Solved" in text and "Found Plan" in text:

@@ -15,7 +15,7 @@ from pathlib import Path
 
 from artiplan.backends.base import BackendResult, Planner, PlanStatus
 from artiplan.backends.convert import plan_from_ipc
-from artiplan.backends.runner import Limits, run_limited
+from artiplan.backends.runner import TIMEOUT_MESSAGES, Limits, run_limited
 from artiplan.errors import ExternalToolError
 
 _EXIT_STATUS = {
@@ -75,8 +75,8 @@ class KairosPlanner(Planner):
         )
         outcome = run_limited(cmd, Limits(time_limit=time_limit, memory_limit=memory_limit))
         text = outcome.stdout + ("\n" + outcome.stderr if outcome.stderr else "")
-        if outcome.limit_hit == "time":
-            status, message = PlanStatus.TIMEOUT, "CPU-time limit reached"
+        if outcome.limit_hit in ("time", "wall"):
+            status, message = PlanStatus.TIMEOUT, TIMEOUT_MESSAGES[outcome.limit_hit]
         elif outcome.limit_hit == "memory":
             status, message = PlanStatus.MEMOUT, "memory limit reached"
         else:

@@ -4,7 +4,9 @@ The same runner serves every backend, so limits and measurements are the same fo
 
 - CPU time: ``RLIMIT_CPU`` on the child (via ``prlimit``; the kernel kills it) plus a poll of
   the process tree's CPU time (children too), and a wall-clock watchdog at
-  ``wall_factor`` x the limit (a child that sleeps or waits on I/O burns no CPU).
+  ``wall_factor`` x the limit + ``wall_slack`` (a child that sleeps or waits on I/O burns no
+  CPU). The watchdog is generous because the machine may be shared: a loaded machine stretches
+  wall time, not CPU time.
 - Memory: the resident memory (RSS) of the whole process tree is polled with psutil and the tree
   is killed when it exceeds the limit. ``RLIMIT_AS`` is not used: the JVM reserves far more
   address space than it touches and would fail at start.
@@ -33,6 +35,11 @@ from pathlib import Path
 import psutil
 
 MIB = 1024 * 1024
+#: Messages of a timeout row, by which limit stopped the run.
+TIMEOUT_MESSAGES = {
+    "time": "CPU-time limit reached",
+    "wall": "wall-clock watchdog (the machine was too loaded or the planner hung)",
+}
 
 
 @dataclass(frozen=True)
@@ -46,14 +53,15 @@ class Limits:
 
     time_limit: float | None = None
     memory_limit: float | None = None
-    wall_factor: float = 2.0
-    wall_slack: float = 10.0
+    wall_factor: float = 3.0
+    wall_slack: float = 30.0
     poll_interval: float = 0.05
 
 
 @dataclass(frozen=True)
 class RunOutcome:
-    """What happened to the child. ``limit_hit``: ``"time"``, ``"memory"`` or None."""
+    """What happened to the child. ``limit_hit``: ``"time"`` (CPU), ``"wall"`` (the watchdog),
+    ``"memory"`` or None."""
 
     returncode: int
     stdout: str
@@ -169,8 +177,10 @@ def _watch(
             over_wall = wall_cap is not None and time.monotonic() - start > wall_cap
             if limits.memory_limit is not None and rss > limits.memory_limit:
                 hit = "memory"
-            elif over_cpu or over_wall:
+            elif over_cpu:
                 hit = "time"
+            elif over_wall:
+                hit = "wall"
             if hit is not None:
                 _kill_tree(proc.pid)
         time.sleep(limits.poll_interval)
