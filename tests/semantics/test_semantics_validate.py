@@ -187,3 +187,15 @@ def test_simulate_can_predict_past_the_plans_end() -> None:
     assert traj.value("(angle L2 z-axis)", 7.0) == pytest.approx(41.0, abs=1e-9)
     assert max(r.time for r in traj.rows if r.kind == "sample") == 11.0
     assert traj.final_state is not None and traj.final_state.time == 1.0
+
+
+def test_division_by_zero_is_reported_not_raised() -> None:
+    from artiplan.pddl.task import BinOp
+
+    div = GroundAction("halve", (), Comparison(">", BinOp("/", f(ANGLE), f(VEL)), c(0.0)),
+                       Effect(), kind="action")
+    task = ng_task(10.0)
+    task = type(task)(**{**task.__dict__, "actions": (*task.actions, div)})
+    report = validate(task, Plan((TimedAction(1.0, "halve"),)))  # vel is 0
+    assert not report.valid and report.kind == "error"
+    assert "division by zero" in report.reason

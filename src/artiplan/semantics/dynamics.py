@@ -31,13 +31,9 @@ from dataclasses import dataclass, field
 from artiplan.pddl.task import (
     And,
     Atom,
-    BinOp,
     Comparison,
     Condition,
-    Const,
-    FluentRef,
     GroundProcess,
-    Neg,
     Not,
     NumExpr,
     Or,
@@ -52,13 +48,13 @@ from artiplan.semantics.expressions import (
     Tolerances,
     compare,
     compile_condition,
-    compile_expr,
     compile_near,
     condition_parts,
     evaluate,
     expr_fluents,
     holds,
 )
+from artiplan.semantics.ode import Integrator, expr_poly, polynomial_solution
 from artiplan.semantics.state import State
 
 
@@ -101,7 +97,7 @@ class Flow:
     exact: bool
     polys: tuple[P.Poly, ...] | None
     config: FlowConfig = DEFAULT_FLOW
-    _numeric: _Integrator | None = field(default=None, repr=False)
+    _numeric: Integrator | None = field(default=None, repr=False)
     #: Per comparison: its difference polynomial and positive roots along this flow.
     _memo: dict[Comparison, tuple[P.Poly | None, list[float] | None]] = field(
         default_factory=dict, repr=False
@@ -126,7 +122,7 @@ class Flow:
         """``expr`` along this flow as a polynomial in dt; None if not polynomial."""
         if self.polys is None:
             return None
-        return _expr_poly(expr, lambda i: self.polys[i])  # type: ignore[index]
+        return expr_poly(expr, lambda i: self.polys[i])  # type: ignore[index]
 
     @property
     def is_static(self) -> bool:
@@ -153,10 +149,10 @@ def make_flow(
         for ce in proc.continuous:
             rates.setdefault(ce.fluent, []).append(ce.rate)
     changing = frozenset(rates)
-    polys = _polynomial_solution(state.values, rates)
+    polys = polynomial_solution(state.values, rates)
     if polys is not None:
         return Flow(state, tuple(processes), changing, True, polys, config)
-    integ = _Integrator(state.values, rates, config.numeric_step)
+    integ = Integrator(state.values, rates, config.numeric_step)
     return Flow(state, tuple(processes), changing, False, None, config, integ)
 
 
@@ -357,98 +353,3 @@ def _numeric_candidates(comps: list[Comparison], flow: Flow, horizon: float) -> 
                     )
         yield from sorted(found)
         prev = cur
-
-
-# ------------------------------------------------------------------- the polynomial solution
-
-
-def _expr_poly(expr: NumExpr, poly_of: Callable[[int], P.Poly | None]) -> P.Poly | None:
-    if isinstance(expr, Const):
-        return (float(expr.value),)
-    if isinstance(expr, FluentRef):
-        return poly_of(expr.index)
-    if isinstance(expr, Neg):
-        inner = _expr_poly(expr.operand, poly_of)
-        return None if inner is None else P.neg(inner)
-    assert isinstance(expr, BinOp)
-    a = _expr_poly(expr.left, poly_of)
-    b = _expr_poly(expr.right, poly_of)
-    if a is None or b is None:
-        return None
-    if expr.op == "+":
-        return P.add(a, b)
-    if expr.op == "-":
-        return P.sub(a, b)
-    if expr.op == "*":
-        return P.mul(a, b)
-    if len(b) == 1 and b[0] != 0.0:  # division by a constant only
-        return P.scale(a, 1.0 / b[0])
-    return None
-
-
-def _polynomial_solution(
-    values: Sequence[float], rates: dict[int, list[NumExpr]]
-) -> tuple[P.Poly, ...] | None:
-    """Exact polynomial of every fluent, or None (a cycle or a non-polynomial rate)."""
-    solved: dict[int, P.Poly] = {}
-    visiting: set[int] = set()
-    failed = False
-
-    def poly_of(i: int) -> P.Poly | None:
-        nonlocal failed
-        if i in solved:
-            return solved[i]
-        if i not in rates:
-            return (values[i],)
-        if i in visiting or failed:  # x depends on itself: exponential, not polynomial
-            failed = True
-            return None
-        visiting.add(i)
-        total: P.Poly = (0.0,)
-        for rate in rates[i]:
-            rp = _expr_poly(rate, poly_of)
-            if rp is None:
-                failed = True
-                return None
-            total = P.add(total, rp)
-        visiting.discard(i)
-        solved[i] = P.integrate(total, values[i])
-        return solved[i]
-
-    for i in rates:
-        if poly_of(i) is None:
-            return None
-    return tuple(solved.get(i, (v,)) for i, v in enumerate(values))
-
-
-class _Integrator:
-    """RK4 with a fixed step and checkpoints (the non-polynomial fallback)."""
-
-    def __init__(self, values: Sequence[float], rates: dict[int, list[NumExpr]], step: float):
-        self.step = step
-        self.terms = [(i, [compile_expr(r) for r in rs]) for i, rs in rates.items()]
-        self.checkpoints: list[tuple[float, ...]] = [tuple(values)]
-
-    def _deriv(self, x: Sequence[float]) -> list[float]:
-        d = [0.0] * len(x)
-        for i, fns in self.terms:
-            d[i] = sum(f(x) for f in fns)
-        return d
-
-    def _rk4(self, x: tuple[float, ...], h: float) -> tuple[float, ...]:
-        k1 = self._deriv(x)
-        k2 = self._deriv([a + 0.5 * h * b for a, b in zip(x, k1, strict=True)])
-        k3 = self._deriv([a + 0.5 * h * b for a, b in zip(x, k2, strict=True)])
-        k4 = self._deriv([a + h * b for a, b in zip(x, k3, strict=True)])
-        return tuple(
-            a + h / 6.0 * (b1 + 2 * b2 + 2 * b3 + b4)
-            for a, b1, b2, b3, b4 in zip(x, k1, k2, k3, k4, strict=True)
-        )
-
-    def values_at(self, dt: float) -> tuple[float, ...]:
-        k = int(dt / self.step)
-        while len(self.checkpoints) <= k:
-            self.checkpoints.append(self._rk4(self.checkpoints[-1], self.step))
-        rest = dt - k * self.step
-        base = self.checkpoints[k]
-        return base if rest <= 0.0 else self._rk4(base, rest)

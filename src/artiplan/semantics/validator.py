@@ -56,7 +56,8 @@ class ValidationReport:
     Attributes:
         valid: True when the plan is valid.
         reason: The first failure, one line ("" when valid).
-        kind: ``precondition``, ``goal``, ``mutex``, ``bad-operator``, ``event`` or "".
+        kind: ``precondition``, ``goal``, ``mutex``, ``bad-operator``, ``event``, ``error``
+            (division by zero, Zeno behaviour) or "" when valid.
         happening: 1-based index of the failing happening (0: before the first one).
         time: Time [s] of the failure.
         condition: The failed condition as PDDL text.
@@ -231,6 +232,11 @@ def run_plan(
         traj.end = state.time
     except _Failure as f:
         report = f.report
+        report.trajectory, report.events = traj, traj.events
+    except (InvalidPlanError, ZeroDivisionError) as exc:  # Zeno, unsettled events, x / 0
+        t = traj.rows[-1].time if traj.rows else 0.0
+        what = "division by zero" if isinstance(exc, ZeroDivisionError) else str(exc)
+        report = ValidationReport(False, f"{what} (after time {t:.6f})", "error", time=t)
         report.trajectory, report.events = traj, traj.events
     return report
 
