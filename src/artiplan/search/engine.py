@@ -12,7 +12,9 @@ Evaluation is lazy (as in Fast Downward's lazy search): successors enter the ope
 their parent's value and are computed when popped. Two open lists, all operators and preferred
 ones, are popped alternately, with a boost for the preferred list after progress (LAMA). Ties are
 broken by insertion order, so a run is deterministic. Duplicates are detected on the facts and the
-values rounded to ``value_precision``.
+values rounded to ``value_precision``. One pruning: an action applied right after another (no wait
+between) that restores the facts from before that other action is skipped (a start then stop
+that only lets ``epsilon`` pass).
 """
 
 from __future__ import annotations
@@ -88,7 +90,7 @@ class Search:
         self.seen: set[tuple[int, tuple[float | None, ...]]] = set()
         self.counter = itertools.count()
         self.stats: dict[str, float] = {"expanded": 0, "generated": 0, "evaluated": 0,
-                                        "duplicates": 0}
+                                        "duplicates": 0, "undo_pruned": 0}
 
     # ------------------------------------------------------------------ successors
     def _key(self, node: Node) -> tuple[int, tuple[float | None, ...]]:
@@ -106,6 +108,10 @@ class Search:
             if facts & act.forb or not act.pre(facts, values):
                 return None
             facts, values = act.effect(facts, values)
+            if parent.by_action and facts == self.nodes[parent.parent].facts:
+                # undoes the previous action after only epsilon: pointless (documented pruning)
+                self.stats["undo_pruned"] += 1
+                return None
             after = len(log)
             facts, values = dyn.settle(t, facts, values, log)
             ready = round(t + self.config.epsilon, 9)

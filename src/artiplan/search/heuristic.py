@@ -31,7 +31,15 @@ from artiplan.search.compiled import (
     fact_literals,
     linearize,
 )
-from artiplan.search.intervals import Intervals, Jump, condition_set, intersect, travel
+from artiplan.search.intervals import (
+    Intervals,
+    Jump,
+    condition_set,
+    contains,
+    displace,
+    intersect,
+    travel,
+)
 
 
 @dataclass(frozen=True)
@@ -42,10 +50,12 @@ class HeuristicConfig:
         time_weight: Cost of one second of waiting, in actions [1/s].
         unreachable_cost: Cost of a conjunct no process seems to reach (kept finite: the
             relaxation is not a proof, the search stays complete).
+        damage_cost: Cost of undoing a goal already reached (a stop and a start).
     """
 
     time_weight: float = 0.1
     unreachable_cost: float = 1000.0
+    damage_cost: float = 2.0
 
 
 @dataclass(frozen=True)
@@ -92,6 +102,7 @@ class RateHeuristic:
                     self.movers.setdefault(fluent, []).append((p.index, lin))
         self.proc_lits = [self._lits(p.req, p.forb) for p in ct.processes]
         self.jumps = self._jumps()
+        self._side_effects()
         self.seconds = 0.0  # time spent in evaluate() [s]
 
     # --------------------------------------------------------------------------- setup
@@ -125,6 +136,45 @@ class RateHeuristic:
                 target = intersect(target, s)
             groups.append(GoalGroup(fn, used, fluent=fluent, target=target))
         return groups
+
+    def _side_effects(self) -> None:
+        """Processes switched on together (same trigger fact) and the goal fluents they move.
+
+        Choosing a process to reach one goal fluent also runs its companions (a rotation carries
+        the links tip-ward): reaching the goal that way may undo goals already reached.
+        """
+        self.goal_of_fluent = {g.fluent: gi for gi, g in enumerate(self.groups)
+                               if g.fluent is not None}
+        self.proc_key: list[int] = []
+        moves: dict[int, dict[int, list[Linear]]] = {}
+        for p in self.ct.processes:
+            key = (p.req & -p.req).bit_length() - 1 if p.req else -1 - p.index
+            self.proc_key.append(key)
+            for fluent, lin, _ in p.rates:
+                if lin is not None and fluent in self.goal_of_fluent:
+                    moves.setdefault(key, {}).setdefault(fluent, []).append(lin)
+        self.key_moves: dict[int, tuple[tuple[int, tuple[Linear, ...]], ...]] = {
+            k: tuple((f, tuple(ls)) for f, ls in sorted(v.items())) for k, v in moves.items()
+        }
+
+    def _damage(
+        self, p: int, fluent: int, seconds: float, values: tuple[float, ...],
+        satisfied: list[bool],
+    ) -> float:
+        """Goals already reached that running ``p``'s group for ``seconds`` would undo."""
+        damage = 0.0
+        for f2, lins in self.key_moves.get(self.proc_key[p], ()):
+            gi = self.goal_of_fluent[f2]
+            if f2 == fluent or not satisfied[gi]:
+                continue
+            r = sum(c + sum(a * values[j] for j, a in cs.items()) for cs, c in lins)
+            if r == 0.0:
+                continue
+            x = displace(values[f2], 1.0 if r > 0 else -1.0, abs(r) * seconds,
+                         self.jumps.get(f2, ()))
+            if not contains(self.groups[gi].target, x):
+                damage += self.config.damage_cost
+        return damage
 
     def _relaxed_actions(self) -> None:
         n = self.n_facts
@@ -216,73 +266,89 @@ class RateHeuristic:
         cfg = self.config
         active_set = set(active)
         costs: tuple[list[float], list[int]] | None = None
-        h = 0.0
+        h = 0.0  # time and damage; the relaxed plan's actions are counted once, at the end
+        plan: set[int] = set()
         preferred: set[int] = set()
         waits: list[int] = []
         needed = False
         unsat = 0
+        satisfied = [g.fn(facts, values) for g in self.groups]
         for gi, g in enumerate(self.groups):
-            if g.fn(facts, values):
+            if satisfied[gi]:
                 continue
             unsat += 1
+            needed_here = True
+            if costs is None:
+                costs = self.fact_costs(facts)
             if g.fluent is None:
-                if costs is None:
-                    costs = self.fact_costs(facts)
                 c = costs[0][g.literal] if g.literal is not None else 1.0
-                h += c if c < math.inf else cfg.unreachable_cost
-                needed = True
-                if g.literal is not None:
-                    self._helpful((g.literal,), costs, facts, preferred, 0)
-                continue
-            best, best_p, best_e = math.inf, -1, 0.0
-            x = values[g.fluent]
-            dist_cache: dict[bool, float] = {}
-            for p, (coeffs, const) in self.movers.get(g.fluent, ()):
-                r = const + sum(a * values[j] for j, a in coeffs.items())
-                if r == 0.0:
-                    continue
-                up = r > 0
-                if up not in dist_cache:
-                    dist_cache[up] = travel(x, 1.0 if up else -1.0, g.target,
-                                            self.jumps.get(g.fluent, ()))
-                d = dist_cache[up]
-                if d == math.inf:
-                    continue
-                if p in active_set:
-                    e = 0.0
+                if c == math.inf:
+                    h += cfg.unreachable_cost
+                elif g.literal is not None:
+                    self._relaxed_plan((g.literal,), costs, plan, preferred)
                 else:
-                    if costs is None:
-                        costs = self.fact_costs(facts)
-                    e = sum(costs[0][lit] for lit in self.proc_lits[p])
-                c = e + cfg.time_weight * d / abs(r)
-                if c < best:
-                    best, best_p, best_e = c, p, e
-            if best_p < 0:
-                h += cfg.unreachable_cost
-                needed = True
-                continue
-            h += best
-            if best_e == 0.0:
-                waits.append(gi)
+                    h += c
             else:
-                needed = True
-                assert costs is not None
-                self._helpful(self.proc_lits[best_p], costs, facts, preferred, 0)
+                best_p, extra = self._best_mover(g, values, active_set, costs, satisfied)
+                if best_p < 0:
+                    h += cfg.unreachable_cost
+                elif best_p in active_set:
+                    h += extra
+                    waits.append(gi)
+                    needed_here = False
+                else:
+                    h += extra
+                    self._relaxed_plan(self.proc_lits[best_p], costs, plan, preferred)
+            needed = needed or needed_here
+        h += len(plan)
         return Evaluation(h, tuple(sorted(preferred)), tuple(waits), needed, unsat)
 
-    def _helpful(
-        self, lits: tuple[int, ...], costs: tuple[list[float], list[int]], facts: int,
-        out: set[int], depth: int,
+    def _best_mover(
+        self, g: GoalGroup, values: tuple[float, ...], active_set: set[int],
+        costs: tuple[list[float], list[int]], satisfied: list[bool],
+    ) -> tuple[int, float]:
+        """The process that best reaches goal group ``g``, and its time and damage cost."""
+        assert g.fluent is not None
+        cfg = self.config
+        best, best_p, best_extra = math.inf, -1, 0.0
+        x = values[g.fluent]
+        dist_cache: dict[bool, float] = {}
+        for p, (coeffs, const) in self.movers.get(g.fluent, ()):
+            r = const + sum(a * values[j] for j, a in coeffs.items())
+            if r == 0.0:
+                continue
+            up = r > 0
+            if up not in dist_cache:
+                dist_cache[up] = travel(x, 1.0 if up else -1.0, g.target,
+                                        self.jumps.get(g.fluent, ()))
+            d = dist_cache[up]
+            if d == math.inf:
+                continue
+            e = 0.0 if p in active_set else sum(costs[0][lit] for lit in self.proc_lits[p])
+            extra = cfg.time_weight * d / abs(r)
+            if e + extra < best:
+                extra += self._damage(p, g.fluent, d / abs(r), values, satisfied)
+            if e + extra < best:
+                best, best_p, best_extra = e + extra, p, extra
+        return best_p, best_extra
+
+    def _relaxed_plan(
+        self, lits: tuple[int, ...], costs: tuple[list[float], list[int]], plan: set[int],
+        preferred: set[int],
     ) -> None:
+        """Add the supporters of ``lits`` (recursively) to ``plan``; applicable ones are helpful."""
         cost, supp = costs
         for lit in lits:
             if cost[lit] == 0.0 or supp[lit] < 0:
                 continue
             a = supp[lit]
+            if a in plan:
+                continue
+            plan.add(a)
             if all(cost[q] == 0.0 for q in self.pre_lits[a]):
-                out.add(a)
-            elif depth < 4:
-                self._helpful(self.pre_lits[a], costs, facts, out, depth + 1)
+                preferred.add(a)
+            else:
+                self._relaxed_plan(self.pre_lits[a], costs, plan, preferred)
 
 
 def literal_lits(cond: Condition, n_facts: int) -> tuple[int, ...]:

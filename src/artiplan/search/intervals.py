@@ -128,3 +128,19 @@ def _next_point(x: float, direction: float, s: Intervals) -> float:
         elif direction < 0 and hi < x:
             best = max(best, hi)
     return best
+
+
+def displace(x: float, direction: float, dist: float, jumps: tuple[Jump, ...]) -> float:
+    """Where ``x`` ends after moving ``dist`` (value units) in ``direction``, through jumps."""
+    for _ in range(16):
+        trig, jump = math.inf, None
+        for j in jumps:
+            p = _next_point(x + direction * 1e-9, direction, j.trigger)
+            if abs(p - x) < trig:
+                trig, jump = abs(p - x), j
+        if jump is None or trig > dist:
+            return x + direction * dist
+        dist -= trig
+        y = x + direction * trig
+        x = jump.scale * y + jump.shift
+    return x
