@@ -10,7 +10,7 @@ at a constant rate gives a parabola (UACM). :func:`make_flow` computes those pol
 Anything else (a rate that reads its own fluent, a division by a changing fluent) falls back to a
 numeric flow, flagged ``Flow.exact = False``: classic RK4 with step ``FlowConfig.numeric_step``
 (1e-3 s), and crossing times found by scanning on that step and refining sign changes with
-``scipy.optimize.brentq`` to ``FlowConfig.root_xtol`` (1e-9 s). The scan can miss a condition
+bisection to ``FlowConfig.root_xtol`` (1e-9 s). The scan can miss a condition
 that is true only between two scan points (a touch); that is documented, not hidden.
 
 Boundary handling (:func:`crossing_time`): the truth of a condition "on (0, eps)" is its *right
@@ -66,7 +66,7 @@ class FlowConfig:
         zero_tol: |left - right| at or below this counts as exactly on the boundary (units of
             the compared values; absorbs rounding, e.g. 360 computed as 359.99999999999994).
         numeric_step: RK4 step [s] of the non-polynomial fallback, and its scan step.
-        root_xtol: Time tolerance [s] of brentq in the fallback.
+        root_xtol: Time tolerance [s] of the bisection in the fallback.
         numeric_horizon: Longest scan [s] of the fallback when no horizon is given.
     """
 
@@ -303,6 +303,21 @@ def crossing_time(
     return None
 
 
+def _bisect(comp: Comparison, flow: Flow, lo: float, hi: float, f_lo: float, xtol: float) -> float:
+    """A sign change of ``left - right`` in [lo, hi] to within ``xtol`` [s] (the upper end of
+    the final bracket: the first time the sign has changed)."""
+    while hi - lo > xtol:
+        mid = 0.5 * (lo + hi)
+        f_mid = _diff_at(comp, flow, mid)
+        if f_mid == 0.0:
+            return mid
+        if (f_mid > 0) == (f_lo > 0):
+            lo, f_lo = mid, f_mid
+        else:
+            hi = mid
+    return hi
+
+
 # Memo: condition id -> (the condition, its comparisons with the fluents each reads). The
 # condition is kept in the entry, so its id cannot be reused while the entry lives.
 _COMPARISONS: dict[int, tuple[Condition, list[tuple[Comparison, set[int]]]]] = {}
@@ -331,9 +346,7 @@ def _candidate_times(comps: list[Comparison], flow: Flow, horizon: float) -> Ite
 
 
 def _numeric_candidates(comps: list[Comparison], flow: Flow, horizon: float) -> Iterator[float]:
-    """Sign changes on a scan of step ``numeric_step``, refined by brentq (fallback)."""
-    from scipy.optimize import brentq
-
+    """Sign changes on a scan of step ``numeric_step``, refined by bisection (fallback)."""
     cfg = flow.config
     end = min(horizon, cfg.numeric_horizon)
     n = max(1, math.ceil(end / cfg.numeric_step))
@@ -348,8 +361,6 @@ def _numeric_candidates(comps: list[Comparison], flow: Flow, horizon: float) -> 
                 if b == 0.0:
                     found.append(t1)
                 else:
-                    found.append(
-                        brentq(lambda t, c=c: _diff_at(c, flow, t), t0, t1, xtol=cfg.root_xtol)
-                    )
+                    found.append(_bisect(c, flow, t0, t1, a, cfg.root_xtol))
         yield from sorted(found)
         prev = cur
