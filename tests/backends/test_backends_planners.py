@@ -47,7 +47,7 @@ def test_missing_kairos_is_exit_9(monkeypatch: pytest.MonkeyPatch) -> None:
 
 
 @pytest.mark.ci
-@pytest.mark.parametrize("name", ["enhsp", "kairos"])
+@pytest.mark.parametrize("name", [pytest.param("enhsp", marks=pytest.mark.java), "kairos"])
 def test_external_planner_solves_and_is_measured(name: str) -> None:
     result = get_planner(name).solve(DOMAIN, EASY, time_limit=30, memory_limit=2048)
     assert result.status is PlanStatus.SOLVED, result.raw_output[-500:]
@@ -59,6 +59,7 @@ def test_external_planner_solves_and_is_measured(name: str) -> None:
 
 
 @pytest.mark.slow
+@pytest.mark.java
 def test_cpu_limit_is_enforced_on_a_hard_problem() -> None:
     limit = 2.0
     result = get_planner("enhsp").solve(DOMAIN, HARD, time_limit=limit, memory_limit=4096)
@@ -69,6 +70,7 @@ def test_cpu_limit_is_enforced_on_a_hard_problem() -> None:
 
 
 @pytest.mark.slow
+@pytest.mark.java
 def test_memory_limit_is_enforced_on_a_hard_problem() -> None:
     result = get_planner("enhsp").solve(DOMAIN, HARD, time_limit=60, memory_limit=150)
     assert result.status is PlanStatus.MEMOUT

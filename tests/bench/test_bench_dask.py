@@ -26,6 +26,7 @@ def _comparable(path: Path) -> list[tuple[object, ...]]:
 
 @pytest.mark.slow
 @pytest.mark.ci
+@pytest.mark.java
 def test_dask_cluster_equals_local_pool(tiny_suite: Path, tmp_path: Path) -> None:
     from distributed import LocalCluster
 

@@ -22,6 +22,7 @@ def _bench(suite: Path, out: Path) -> list[str]:
 
 @pytest.mark.slow
 @pytest.mark.ci
+@pytest.mark.java
 def test_resume_after_kill(tiny_suite: Path, tmp_path: Path) -> None:
     out = tmp_path / "results.jsonl"
     first = subprocess.Popen(_bench(tiny_suite, out), stderr=subprocess.DEVNULL)
