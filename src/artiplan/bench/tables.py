@@ -149,3 +149,28 @@ def rows_csv(found: Sequence[Row]) -> str:
     for row in found:
         lines.append(",".join("" if row.get(k) is None else str(row.get(k)) for k in keys))
     return "\n".join(lines) + "\n"
+
+
+#: The paper's Table 1 (ENHSP, 300 CPU-s, 8 GB, i7-6900K), sizes 3 4 5 6 7 8 10 12, for reference.
+PAPER_TABLE1: tuple[tuple[str, str, str], ...] = (
+    ("NG", "", "0.4 (100) | 0.6 (100) | 0.7 (80) | 7.3 (80) | 15.5 (40) | 3.8 (20) | 108.4 (60) "
+     "| 4.5 (20)"),
+    ("UCM", "0.1", "0.5 (100) | 1.9 (100) | 1.3 (80) | 4.4 (60) | 63.9 (40) | 36.0 (20) | -- (0) "
+     "| 198.5 (20)"),
+    ("UCM", "0.5", "0.5 (100) | 1.9 (100) | 1.3 (80) | 14.9 (80) | 14.5 (40) | 60.7 (20) | -- (0) "
+     "| -- (0)"),
+    ("UCM", "1.0", "0.5 (100) | 1.7 (100) | 40.0 (80) | 3.2 (80) | 15.4 (40) | 55.3 (20) | -- (0) "
+     "| -- (0)"),
+    ("UACM", "0.1", "0.5 (100) | 1.2 (100) | 1.3 (80) | 4.4 (60) | 19.3 (20) | 42.5 (20) "
+     "| 50.3 (20) | -- (0)"),
+    ("UACM", "0.5", "0.5 (100) | 1.2 (100) | 1.3 (80) | 4.8 (60) | 19.4 (20) | 50.0 (20) "
+     "| 55.3 (20) | -- (0)"),
+)
+
+
+def paper_table1_markdown() -> str:
+    """The paper's Table 1 (ENHSP) as Markdown, to read our tables against."""
+    lines = ["| Model | Param | 3 | 4 | 5 | 6 | 7 | 8 | 10 | 12 |",
+             "|---|---|" + "---:|" * 8]
+    lines += [f"| {model} | {param} | {cells} |" for model, param, cells in PAPER_TABLE1]
+    return "\n".join(lines) + "\n"

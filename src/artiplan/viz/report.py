@@ -184,6 +184,8 @@ def write_report(rows: Sequence[dict[str, Any]], outdir: Path, source: str = "")
         put(f"table1-{name}.tex", tables.table1_latex(cells, variants, sizes, caption))
         index += [f"### {name}", "", md,
                   f"[Markdown](table1-{name}.md), [LaTeX](table1-{name}.tex)", ""]
+    index += ["### For reference: the paper's Table 1 (ENHSP, 300 CPU-s limit, 8 GB, i7-6900K)",
+              "", tables.paper_table1_markdown()]
     par = {n: agg.par10(data, n, limit) for n in names}
     shown = [v for v in agg.PAR10_VARIANTS if v in variants] or variants
     written += plot_par10(par, shown, sizes, limit, outdir / "par10")
