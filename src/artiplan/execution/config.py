@@ -1,0 +1,75 @@
+"""Settings of the closed loop (frozen dataclasses: no module-level mutable settings)."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+from artiplan.encoding import EncodingOptions
+from artiplan.model import PLANES
+
+
+@dataclass(frozen=True)
+class Intervention:
+    """A scripted human intervention: at ``time`` [s, simulated] turn ``link`` by ``delta_deg``
+    [deg] on ``plane`` (the links tip-ward are carried), as :meth:`World.push` does."""
+
+    time: float
+    link: str
+    plane: str
+    delta_deg: float
+
+    def __post_init__(self) -> None:
+        if self.plane not in PLANES:
+            raise ValueError(f"unknown plane {self.plane!r}; valid: {', '.join(PLANES)}")
+        if self.time < 0:
+            raise ValueError("intervention time must be >= 0")
+
+
+@dataclass(frozen=True)
+class LoopConfig:
+    """How the loop plans, monitors and re-plans.
+
+    Attributes:
+        encoding: PDDL+ model and its parameters (speeds, gravity, reach time).
+        goal_style: ``window`` or ``threshold`` (see :func:`artiplan.encoding.make_goal`).
+        plan_tolerance_deg: Half-width [deg] of the planning goal's windows (tighter than the
+            acceptance tolerance, leaving a margin for execution error).
+        accept_deg: Success: every goal link within this direction error [deg] of the target
+            in the perceived state at the final happening.
+        threshold_deg: The monitor fires when a goal link's direction error against the
+            prediction passes this [deg].
+        other_threshold_deg: The same for the other links (None: ``threshold_deg``); wider by
+            default because the PDDL+ model mispredicts carried links by design.
+        monitor_dt: Perception and monitoring period between happenings [s, simulated].
+        max_replans: At most this many re-plans a run.
+        replan: Re-plan at all (False: execute the first plan open-loop).
+        plan_time_limit: Wall-clock limit of one planner call [s].
+        advance_latency: Let the world run on (hands released) for the measured planning
+            latency before a new plan starts, instead of freezing simulated time while planning.
+        settle_s: Simulated time the world runs before the first percept [s].
+        interventions: Scripted pushes.
+        max_time: Simulated-time budget of the whole run [s].
+    """
+
+    encoding: EncodingOptions = field(default_factory=lambda: EncodingOptions("ucm", speed_g=0.5))
+    goal_style: str = "window"
+    plan_tolerance_deg: float = 2.5
+    accept_deg: float = 5.0
+    threshold_deg: float = 8.0
+    other_threshold_deg: float | None = 45.0
+    monitor_dt: float = 0.25
+    max_replans: int = 5
+    replan: bool = True
+    plan_time_limit: float = 60.0
+    advance_latency: bool = False
+    settle_s: float = 0.0
+    interventions: tuple[Intervention, ...] = ()
+    max_time: float = 600.0
+
+    def __post_init__(self) -> None:
+        if self.threshold_deg <= 0 or self.accept_deg <= 0 or self.plan_tolerance_deg <= 0:
+            raise ValueError("threshold, acceptance and planning tolerances must be positive")
+        if self.monitor_dt <= 0:
+            raise ValueError("monitor_dt must be positive")
+        if self.max_replans < 0:
+            raise ValueError("max_replans must be >= 0")

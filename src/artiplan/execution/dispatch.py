@@ -1,0 +1,59 @@
+"""Carry out one plan action on the world (the paper's action vocabulary -> hand commands)."""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+from artiplan.model import PLANES, ArticulatedObject, Configuration
+from artiplan.semantics import TimedAction
+
+if TYPE_CHECKING:
+    from artiplan.world import World
+
+
+class ActionFailed(RuntimeError):
+    """The world could not carry out an action (unknown action, unreachable grasp, IK failure)."""
+
+
+def _link(obj: ArticulatedObject, name: str) -> str:
+    for lk in obj.links:
+        if lk.lower() == name.lower():
+            return lk
+    raise ActionFailed(f"unknown link {name!r}")
+
+
+def _plane(name: str) -> str:
+    for p in PLANES:
+        if p.lower() == name.lower():
+            return p
+    raise ActionFailed(f"unknown plane {name!r}")
+
+
+def dispatch(
+    world: World, action: TimedAction, speeds: tuple[float, float], predicted: Configuration
+) -> str:
+    """Carry out ``action`` now; returns a one-line description of what the hands did.
+
+    ``start-increase/decrease L_k L_k+1 p``: hold L_k, rotate L_k+1 on plane p at
+    ``speeds`` (increase, decrease) [deg/s], in the representation of ``predicted``.
+    ``stop-*``: stop and release both hands. ``observe``: nothing.
+    Raises :class:`ActionFailed` when the world cannot do it.
+    """
+    name = action.name.lower()
+    if name == "observe":
+        return "observe"
+    if name.startswith("stop-"):
+        world.stop(release=True)
+        return "stop and release"
+    if name in ("start-increase", "start-decrease") and len(action.args) == 3:
+        hold, turn = _link(world.obj, action.args[0]), _link(world.obj, action.args[1])
+        plane = _plane(action.args[2])
+        direction = 1 if name == "start-increase" else -1
+        speed = speeds[0] if direction > 0 else speeds[1]
+        try:
+            world.hold_and_rotate(hold, turn, plane, direction, speed, reference=predicted)
+        except (ValueError, RuntimeError, FloatingPointError) as exc:
+            raise ActionFailed(f"{action.signature}: {exc}") from exc
+        sign = "+" if direction > 0 else "-"
+        return f"hold {hold}, rotate {turn} on {plane} {sign}{speed:g} deg/s"
+    raise ActionFailed(f"no hand command for {action.signature}")

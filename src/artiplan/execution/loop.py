@@ -1,0 +1,218 @@
+"""The closed loop: perceive -> PDDL+ problem -> plan -> dispatch -> monitor -> re-plan.
+
+Simulated time is the world's clock: actions are dispatched at their planned times on it.
+Planning latency is measured on the wall clock and logged; with
+``LoopConfig.advance_latency`` the world also runs on (hands released) for that long before the
+new plan starts, else simulated time stands still while the planner thinks.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from dataclasses import asdict
+from typing import TYPE_CHECKING, Any
+
+from artiplan.encoding import domain_pddl, make_goal
+from artiplan.execution.config import Intervention, LoopConfig
+from artiplan.execution.dispatch import ActionFailed, dispatch
+from artiplan.execution.monitor import Monitor, goal_errors
+from artiplan.execution.predict import Prediction
+from artiplan.execution.problem import build_problem, canonical
+from artiplan.execution.runlog import RunLog, conf_dict
+from artiplan.model import Configuration
+from artiplan.search.api import PlanStatus, plan
+from artiplan.semantics import Plan
+from artiplan.semantics.plan_io import format_plan
+
+if TYPE_CHECKING:
+    from artiplan.world import World
+
+Progress = Callable[[str], None]
+_EPS = 1e-6
+
+
+class ClosedLoop:
+    """One run of the loop on ``world`` toward ``target``; call :meth:`run`."""
+
+    def __init__(self, world: World, target: Configuration, config: LoopConfig,
+                 progress: Progress | None = None, seed: int = 0) -> None:
+        self.world, self.obj, self.target, self.config = world, world.obj, target, config
+        self.progress = progress or (lambda _line: None)
+        enc = config.encoding
+        # Goals on canonical covers, like the problems (see execution.problem.canonical).
+        self.goal = make_goal(self.obj, canonical(target), config.goal_style, seed,
+                              planes=enc.planes, tolerance=config.plan_tolerance_deg)
+        self.domain = domain_pddl(self.obj, enc)
+        self.monitor = Monitor(self.obj, config.threshold_deg, self.goal.links,
+                               config.other_threshold_deg)
+        self.pending = sorted(config.interventions, key=lambda i: i.time)
+        self.replans = 0
+        self.log = RunLog(
+            settings={**_settings(config), "hands": world.hands.kind,
+                      "physics": asdict(world.config.physics)},
+            object=self.obj.to_dict(),
+            initial=conf_dict(world.true_configuration()),
+            target=conf_dict(target),
+            goal_links=list(self.goal.links),
+        )
+
+    # -- the run --------------------------------------------------------------------------
+    def run(self) -> RunLog:
+        """Plan, execute, monitor and re-plan until success, failure or the re-plan budget."""
+        wall0 = time.perf_counter()
+        self.world.run_until(self.world.time + self.config.settle_s)
+        reason = "initial"
+        while True:
+            prediction = self._plan(reason)
+            if prediction is None:
+                break
+            outcome = self._execute(prediction)
+            if outcome is None:  # plan finished: check the goal at the final happening
+                if self._final_check() or not self._may_replan():
+                    break
+                reason = "goal not reached at the final happening"
+            else:
+                reason = outcome
+            self.world.stop(release=True)
+            self.replans += 1
+        if not self.log.final:
+            self._final_check()
+        self.world.stop(release=True)
+        self.log.wall_s = round(time.perf_counter() - wall0, 4)
+        return self.log
+
+    def _may_replan(self) -> bool:
+        return self.config.replan and self.replans < self.config.max_replans \
+            and self.world.time < self.config.max_time
+
+    # -- planning -------------------------------------------------------------------------
+    def _plan(self, reason: str) -> Prediction | None:
+        """Perceive, build the problem, plan; log it. None when no plan was found."""
+        start = canonical(self.world.perceive().configuration)
+        problem = build_problem(self.obj, start, self.target, self.config.encoding, self.goal)
+        t = time.perf_counter()
+        result = plan(self.domain, problem, time_limit=self.config.plan_time_limit)
+        latency = time.perf_counter() - t
+        index = len(self.log.plans)
+        if index:
+            self.log.replans.append({"time": round(self.world.time, 4), "reason": reason,
+                                     "latency_wall_s": round(latency, 4)})
+        if self.config.advance_latency:
+            self.world.run_until(self.world.time + latency)
+        t0 = self.world.time
+        solved = result.status is PlanStatus.SOLVED and result.plan is not None
+        record: dict[str, Any] = {
+            "index": index, "start_time": round(t0, 4), "reason": reason,
+            "status": result.status.value, "latency_wall_s": round(latency, 4),
+            "makespan": result.stats.get("makespan"), "start": conf_dict(start),
+            "message": result.message,
+            "text": format_plan(result.plan) if solved and result.plan else "",
+            "actions": [{"time": round(t0 + a.time, 6), "action": a.signature}
+                        for a in (result.plan.actions if solved and result.plan else ())],
+        }
+        self.log.plans.append(record)
+        self.progress(f"plan {index} ({reason}): {result.status.value} in {latency:.2f} s wall, "
+                      f"{len(record['actions'])} actions")
+        if not solved or result.plan is None:
+            return None
+        self.current_plan: Plan = result.plan
+        return Prediction(self.obj, result.trajectory, t0, start)
+
+    # -- execution ------------------------------------------------------------------------
+    def _execute(self, pred: Prediction) -> str | None:
+        """Dispatch the plan on the world, monitoring in between. Returns a re-plan reason, or
+        None when the plan ran to its end."""
+        plan_ = self.current_plan
+        actions = sorted(plan_.actions, key=lambda a: a.time)
+        end = pred.t0 + max(plan_.makespan, plan_.end or 0.0)
+        index, i = len(self.log.plans) - 1, 0
+        next_mon = self.world.time
+        while True:
+            t_act = pred.t0 + actions[i].time if i < len(actions) else end
+            t_int = self.pending[0].time if self.pending else float("inf")
+            t_next = min(t_act, next_mon, t_int)
+            self.world.run_until(t_next)
+            now = self.world.time
+            if t_int <= now + _EPS:
+                self._intervene(self.pending.pop(0), index)
+                next_mon = now  # look again at once
+                continue
+            happening = i < len(actions) and t_act <= now + _EPS
+            reason = self._observe(pred, index, "happening" if happening else "monitor")
+            if reason is not None and self._may_replan():
+                return reason
+            if happening:
+                while i < len(actions) and pred.t0 + actions[i].time <= now + _EPS:
+                    failure = self._dispatch(actions[i], pred, index)
+                    i += 1
+                    if failure is not None and self._may_replan():
+                        return failure
+            if i >= len(actions) and now >= end - _EPS:
+                return None
+            if t_next >= next_mon - _EPS:
+                next_mon = now + self.config.monitor_dt
+            if now > self.config.max_time:
+                return None
+
+    def _observe(self, pred: Prediction, index: int, kind: str) -> str | None:
+        """Perceive, compare with the prediction, log; a reason when the monitor fires."""
+        now = self.world.time
+        predicted = pred.at(now)
+        percept = self.world.perceive(reference=predicted)
+        verdict = self.monitor.check(predicted, percept.configuration)
+        self.log.samples.append({
+            "time": round(now, 4), "plan": index, "kind": kind, "predicted": conf_dict(predicted),
+            "perceived": conf_dict(percept.configuration),
+            "errors": [round(e, 3) for e in verdict.errors]})
+        if not verdict.fired:
+            return None
+        return (f"{verdict.worst_link} off the prediction by {verdict.worst_error:.1f} deg "
+                f"(threshold {verdict.threshold:g})")
+
+    def _dispatch(self, action: Any, pred: Prediction, index: int) -> str | None:
+        enc = self.config.encoding
+        now = self.world.time
+        try:
+            did, ok = dispatch(self.world, action, (enc.speed_i, enc.speed_d), pred.at(now)), True
+        except ActionFailed as exc:
+            did, ok = str(exc), False
+        self.log.happenings.append({"time": round(now, 4), "plan": index,
+                                    "action": action.signature, "ok": ok, "did": did})
+        self.progress(f"t={now:7.2f} s  {action.signature}: {did}")
+        return None if ok else f"action failed: {did}"
+
+    def _intervene(self, iv: Intervention, index: int) -> None:
+        self.world.push(iv.link, iv.plane, iv.delta_deg)
+        self.log.interventions.append({"time": round(self.world.time, 4), "link": iv.link,
+                                       "plane": iv.plane, "delta_deg": iv.delta_deg})
+        self.progress(f"t={self.world.time:7.2f} s  human pushes {iv.link} by "
+                      f"{iv.delta_deg:+g} deg on {iv.plane}")
+
+    def _final_check(self) -> bool:
+        """Hold still, perceive, judge the goal (every goal link within ``accept_deg``)."""
+        self.world.stop(release=False)
+        percept = self.world.perceive()
+        errs = goal_errors(self.obj, self.target, percept.configuration, self.goal.links)
+        ok = all(e <= self.config.accept_deg for e in errs.values())
+        self.log.final = {"time": round(self.world.time, 4),
+                          "perceived": conf_dict(percept.configuration),
+                          "goal_errors": {k: round(v, 3) for k, v in errs.items()},
+                          "max_goal_error": round(max(errs.values(), default=0.0), 3),
+                          "success": ok, "replans": self.replans}
+        self.log.success = ok
+        self.progress(f"t={self.world.time:7.2f} s  goal {'reached' if ok else 'NOT reached'}: "
+                      + ", ".join(f"{k} {v:.1f} deg" for k, v in errs.items()))
+        return ok
+
+
+def _settings(config: LoopConfig) -> dict[str, Any]:
+    d = asdict(config)
+    d["interventions"] = [asdict(i) for i in config.interventions]
+    return d
+
+
+def run_loop(world: World, target: Configuration, config: LoopConfig | None = None,
+             progress: Progress | None = None, seed: int = 0) -> RunLog:
+    """Run the closed loop once; see :class:`ClosedLoop`."""
+    return ClosedLoop(world, target, config or LoopConfig(), progress, seed).run()

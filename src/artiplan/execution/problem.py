@@ -1,0 +1,32 @@
+"""Perceived configuration -> PDDL+ problem (through the world's ontology when it has one)."""
+
+from __future__ import annotations
+
+from artiplan.encoding import EncodingOptions, GoalSpec, problem_pddl
+from artiplan.model import ArticulatedObject, Configuration
+from artiplan.model.angles import wrap_deg
+
+
+def canonical(conf: Configuration) -> Configuration:
+    """Each link's double-cover representation with gamma in [0, 180] (theta = azimuth).
+
+    The PDDL+ models add a rotation's angle to every carried link's angle, which matches a rigid
+    rotation of the chain only when the links' thetas are their azimuths: with gamma in
+    (180, 360) a link's theta points the other way and the model turns it the wrong way.
+    """
+    theta, gamma = [], []
+    for t, g in zip(conf.theta, conf.gamma, strict=True):
+        t, g = wrap_deg(t), wrap_deg(g)
+        if g > 180.0:
+            t, g = wrap_deg(t + 180.0), 360.0 - g
+        theta.append(t)
+        gamma.append(g)
+    return Configuration(tuple(theta), tuple(gamma))
+
+
+def build_problem(
+    obj: ArticulatedObject, perceived: Configuration, target: Configuration,
+    options: EncodingOptions, goal: GoalSpec,
+) -> str:
+    """The PDDL+ problem from the perceived configuration (canonical covers) to ``goal``."""
+    return problem_pddl(obj, canonical(perceived), target, options, goal=goal, name="replan")
