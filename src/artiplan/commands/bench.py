@@ -7,6 +7,7 @@ Example: ``artiplan bench suite/ --planners artiplan,enhsp,kairos --time-limit 6
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 
 from artiplan.errors import ExitCode, UsageError
@@ -67,6 +68,14 @@ def run(args: argparse.Namespace) -> int:
         Job(p.name, problem, args.time_limit, args.memory_limit)
         for problem in problems for p in planners
     ]
-    written = run_jobs(jobs, args.out, RunConfig(jobs=args.jobs, scheduler=args.scheduler))
+    try:
+        written = run_jobs(jobs, args.out, RunConfig(jobs=args.jobs, scheduler=args.scheduler))
+    except KeyboardInterrupt:
+        # Every finished run is already on disk. Exit at once: the worker threads die with the
+        # process and take their planners with them (parent-death signal), instead of waiting
+        # for the running planners to reach their limits.
+        print(f"\nartiplan bench: interrupted; rerun the same command to resume ({args.out})",
+              file=sys.stderr, flush=True)
+        os._exit(130)
     print(f"artiplan bench: {written} new runs written to {args.out}", file=sys.stderr)
     return int(ExitCode.OK)
