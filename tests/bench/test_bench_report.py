@@ -78,3 +78,25 @@ def test_report_writes_tables_figures_and_index(tmp_path: Path) -> None:
     index = (tmp_path / "report" / "index.md").read_text()
     assert "artiplan / enhsp" in index and "![PAR10](par10.png)" in index
     assert (tmp_path / "report" / "par10.png").stat().st_size > 5000
+
+
+def test_cli_exit_codes_for_bad_input(tmp_path: Path, tiny_suite: Path) -> None:
+    from artiplan.cli import main
+
+    assert main(["report", str(tmp_path / "missing.jsonl"), "-o", str(tmp_path / "r")]) == 3
+    assert main(["bench", str(tiny_suite), "--planners", "nope", "--out",
+                 str(tmp_path / "x.jsonl")]) == 2
+    assert main(["bench", str(tmp_path), "--planners", "kairos"]) == 3  # no suite.json
+    assert main(["bench", str(tiny_suite), "--sizes", "99", "--out", str(tmp_path / "y")]) == 2
+
+
+def test_cli_report_from_a_results_file(tmp_path: Path) -> None:
+    import json
+
+    from artiplan.cli import main
+
+    results = tmp_path / "results.jsonl"
+    results.write_text("".join(json.dumps(r) + "\n" for r in ROWS))
+    assert main(["report", str(results), "-o", str(tmp_path / "rep")]) == 0
+    table = (tmp_path / "rep" / "table1-enhsp.md").read_text()
+    assert "3.0 (50)" in table
