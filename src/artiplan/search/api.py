@@ -16,7 +16,7 @@ from typing import Any
 
 from artiplan.errors import ExitCode, UsageError
 from artiplan.pddl.task import Task
-from artiplan.search.compiled import CompiledTask, Slack, compile_task
+from artiplan.search.compiled import CompiledTask, compile_task
 from artiplan.search.dynamics import Dynamics, DynamicsConfig, ZenoError
 from artiplan.search.engine import Search, SearchConfig, SearchOutcome, initial_node
 from artiplan.search.heuristic import HeuristicConfig, RateHeuristic
@@ -130,7 +130,7 @@ def plan_task(
 
 def _plan(task: Task, limits: Limits, stats: dict[str, Any], options: dict[str, Any]) -> PlanResult:
     t = time.perf_counter()
-    ct = compile_task(task, Slack())
+    ct = compile_task(task)
     dyn = Dynamics(ct, DynamicsConfig(fallback_step=float(options.get("fallback_step", 0.1))))
     heur = RateHeuristic(ct, HeuristicConfig(time_weight=float(options.get("time_weight", 0.1))))
     stats["compile_s"] = time.perf_counter() - t
@@ -142,38 +142,47 @@ def _plan(task: Task, limits: Limits, stats: dict[str, Any], options: dict[str, 
         goal_margin=float(options.get("goal_margin", 0.05)),
         value_precision=int(options.get("value_precision", 6)),
     )
-    search = Search(ct, dyn, heur, config, limits.check)
+    checked: dict[int, tuple[Plan, Any]] = {}
+
+    def accept(outcome: SearchOutcome) -> bool:
+        """A goal node counts only if the validator agrees (else: a bug, counted, searched on)."""
+        found = extract_plan(ct, outcome)
+        if not options.get("validate", True):
+            checked[0] = (found, None)
+            return True
+        report = _validate(task, found, stats)
+        if report.valid:
+            checked[0] = (found, report.trajectory)
+            return True
+        stats.setdefault("rejected_reasons", []).append(report.reason)
+        return False
+
+    search = Search(ct, dyn, heur, config, limits.check, accept)
     t = time.perf_counter()
     try:
         outcome = search.run(initial_node(ct, dyn))
     finally:
         stats.update(search.stats)
         stats.update(dyn.counters)
-        stats["search_s"] = time.perf_counter() - t
+        stats["search_s"] = time.perf_counter() - t - stats.get("validate_s", 0.0)
         stats["heuristic_s"] = heur.seconds
     if outcome.goal is None:
         return PlanResult(PlanStatus.NO_PLAN, message="search space exhausted without a plan "
                           "(not a proof: waits stop only at critical times)")
-    result = extract_plan(ct, outcome)
-    stats["plan_length"] = len(result.actions)
-    stats["makespan"] = result.makespan
-    if not options.get("validate", True):
-        return PlanResult(PlanStatus.SOLVED, result, None, {"validated": False})
-    return _validated(task, result, stats)
+    found, trajectory = checked[0]
+    stats["plan_length"] = len(found.actions)
+    stats["makespan"] = found.makespan
+    stats["validated"] = bool(options.get("validate", True))
+    return PlanResult(PlanStatus.SOLVED, found, trajectory)
 
 
-def _validated(task: Task, result: Plan, stats: dict[str, Any]) -> PlanResult:
+def _validate(task: Task, found: Plan, stats: dict[str, Any]) -> Any:
     from artiplan.semantics import validate
 
     t = time.perf_counter()
-    report = validate(task, result)
-    stats["validate_s"] = time.perf_counter() - t
-    stats["validated"] = report.valid
-    if not report.valid:
-        return PlanResult(PlanStatus.ERROR, result, report.trajectory,
-                          message=f"internal error: the validator rejects the plan found: "
-                          f"{report.reason}")
-    return PlanResult(PlanStatus.SOLVED, result, report.trajectory)
+    report = validate(task, found)
+    stats["validate_s"] = stats.get("validate_s", 0.0) + time.perf_counter() - t
+    return report
 
 
 def extract_plan(ct: CompiledTask, outcome: SearchOutcome) -> Plan:

@@ -103,25 +103,31 @@ class CompiledComparison:
 
 @dataclass(frozen=True)
 class Slack:
-    """How comparisons are read, as the validator reads them (VAL): ``x > c`` iff
-    ``x - c > -strict``; ``x >= c`` iff ``x - c >= -eps`` (value units)."""
+    """How comparisons are read (as :mod:`artiplan.semantics` reads them): ``x > c`` iff
+    ``x - c > -strict``; ``x >= c`` iff ``x - c >= -eps``; ``x = c`` iff ``|x - c| <= eps``."""
 
     strict: float = 1e-4
     eps: float = 1e-9
 
     def offset(self, op: str) -> float:
-        """``p op c`` holds iff ``p - c + offset op 0`` (the boundary the waits look for)."""
+        """``p op 0`` is read as ``p + offset op 0``."""
         return {">": self.strict, "<": -self.strict, ">=": self.eps, "<=": -self.eps}.get(op, 0.0)
+
+
+#: VAL's reading: goal, action and event preconditions (``semantics.VAL_TOLERANCES``)
+VAL_SLACK = Slack(1e-4, 1e-9)
+#: exact up to rounding: process preconditions (``semantics`` settles flows this way)
+SNAP_SLACK = Slack(-1e-9, 1e-9)
 
 
 @dataclass
 class ComparisonTable:
     """Distinct comparisons of the task, numbered; conditions refer to them by number.
 
-    The polynomial kept for each includes the slack: its roots are where the truth changes.
+    The waits look for the exact roots of ``p`` (``p = left - right``): that is where the
+    reference semantics fires events and switches processes.
     """
 
-    slack: Slack = field(default_factory=Slack)
     items: list[CompiledComparison] = field(default_factory=list)
     index: dict[tuple[str, str], int] = field(default_factory=dict)
 
@@ -129,43 +135,42 @@ class ComparisonTable:
         p: NumExpr = BinOp("-", comp.left, comp.right)
         key = (comp.op, repr(p))
         if key not in self.index:
-            off = self.slack.offset(comp.op)
-            lin = linearize(p)
-            if lin is not None:
-                lin = (lin[0], lin[1] + off)
-            shifted: NumExpr = BinOp("+", p, Const(off)) if off else p
             self.index[key] = len(self.items)
             self.items.append(
-                CompiledComparison(comp.op, shifted, lin, frozenset(fluents_of(p)))
+                CompiledComparison(comp.op, p, linearize(p), frozenset(fluents_of(p)))
             )
         return self.index[key]
 
 
-def condition_source(cond: Condition, comps: ComparisonTable, used: set[int]) -> str:
+def condition_source(
+    cond: Condition, comps: ComparisonTable, used: set[int], slack: Slack = VAL_SLACK
+) -> str:
     """Python source of a condition over ``F`` (fact mask) and ``V``; records comparisons."""
     if isinstance(cond, Truth):
         return "True" if cond.value else "False"
     if isinstance(cond, Atom):
         return f"(F & {1 << cond.fact} != 0)"
     if isinstance(cond, Not):
-        return f"(not {condition_source(cond.operand, comps, used)})"
+        return f"(not {condition_source(cond.operand, comps, used, slack)})"
     if isinstance(cond, (And, Or)):
         if not cond.parts:
             return "True" if isinstance(cond, And) else "False"
         glue = " and " if isinstance(cond, And) else " or "
-        return "(" + glue.join(condition_source(p, comps, used) for p in cond.parts) + ")"
+        return "(" + glue.join(condition_source(p, comps, used, slack) for p in cond.parts) + ")"
     used.add(comps.add(cond))
     left, right = expr_source(cond.left), expr_source(cond.right)
     if cond.op == "=":
-        return f"(abs({left} - {right}) <= {comps.slack.eps!r})"
-    off = comps.slack.offset(cond.op)
+        return f"(abs({left} - {right}) <= {slack.eps!r})"
+    off = slack.offset(cond.op)
     return f"({left} - {right} + {off!r} {cond.op} 0.0)"
 
 
-def compile_condition(cond: Condition, comps: ComparisonTable) -> tuple[CondFn, frozenset[int]]:
+def compile_condition(
+    cond: Condition, comps: ComparisonTable, slack: Slack = VAL_SLACK
+) -> tuple[CondFn, frozenset[int]]:
     """A condition as a function ``(F, V) -> bool`` plus the comparisons it reads."""
     used: set[int] = set()
-    src = condition_source(cond, comps, used)
+    src = condition_source(cond, comps, used, slack)
     fn: CondFn = eval(f"lambda F, V: {src}")  # noqa: S307 - source generated from the task
     return fn, frozenset(used)
 
@@ -296,14 +301,14 @@ class CompiledTask:
         return len(self.task.fluents)
 
 
-def compile_task(task: Task, slack: Slack | None = None) -> CompiledTask:
+def compile_task(task: Task) -> CompiledTask:
     """Compile ``task`` for search (a few milliseconds per hundred operators)."""
-    comps = ComparisonTable(slack or Slack())
+    comps = ComparisonTable()
     actions = [_compile_op(i, a, comps) for i, a in enumerate(task.actions)]
     events = [_compile_op(i, e, comps) for i, e in enumerate(task.events)]
     processes = []
     for i, p in enumerate(task.processes):
-        pre, used = compile_condition(p.precondition, comps)
+        pre, used = compile_condition(p.precondition, comps, SNAP_SLACK)
         lits = fact_literals(p.precondition) or (0, 0)
         rates = tuple((ce.fluent, linearize(ce.rate), ce.rate) for ce in p.continuous)
         processes.append(CompiledProcess(i, p.signature, pre, used, lits[0], lits[1], rates))

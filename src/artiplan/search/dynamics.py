@@ -67,6 +67,10 @@ class Dynamics:
             all(lin is not None and not lin[0] for _, lin, _ in p.rates) for p in self.ct.processes
         ]
         self._flow_cache: dict[tuple[int, ...], Flow] = {}
+        self._proc_index = {id(p): i for i, p in enumerate(self.ct.task.processes)}
+        self._event_index = {id(e): i for i, e in enumerate(self.ct.task.events)}
+        self.counters.setdefault("reference_flows", 0)
+        self.counters.setdefault("reference_events", 0)
         self._comp_cache: dict[tuple[frozenset[int], str], tuple[int, ...]] = {}
 
     # ------------------------------------------------------------------ processes and flows
@@ -80,7 +84,8 @@ class Dynamics:
         out.sort()
         return tuple(out)
 
-    def _flow_of(self, active: tuple[int, ...], values: Values) -> Flow:
+    def flow_of(self, active: tuple[int, ...], values: Values) -> Flow:
+        """The flow while exactly ``active`` run (cached when their rates are constant)."""
         cached = self._flow_cache.get(active)
         if cached is not None:
             return cached
@@ -90,14 +95,26 @@ class Dynamics:
         return flow
 
     def flow(self, facts: int, values: Values) -> tuple[tuple[int, ...], Flow]:
-        """Active processes and their flow just after now (right limit)."""
+        """Active processes and their flow just after now (right limit).
+
+        When a process sits on the boundary of its precondition (the look-ahead disagrees with
+        the present), the reference semantics decides (``semantics.settled_flow``).
+        """
         act = self.active(facts, values)
-        flow = self._flow_of(act, values)
+        flow = self.flow_of(act, values)
         if flow.moving:
             ahead = self.active(facts, advance_values(values, flow, self.config.probe))
             if ahead != act:
-                act, flow = ahead, self._flow_of(ahead, values)
+                self.counters["reference_flows"] += 1
+                act = self._reference_active(facts, values)
+                flow = self.flow_of(act, values)
         return act, flow
+
+    def _reference_active(self, facts: int, values: Values) -> tuple[int, ...]:
+        from artiplan.semantics import State, settled_flow
+
+        flow = settled_flow(self.ct.task, State(0.0, _fact_set(facts), values))
+        return tuple(sorted(self._proc_index[id(p)] for p in flow.processes))
 
     def comps_for(self, flow: Flow, kind: str) -> tuple[int, ...]:
         """Comparisons of ``kind`` ('watched' or 'dynamic') that read a moving fluent."""
@@ -135,25 +152,29 @@ class Dynamics:
 
     # ------------------------------------------------------------------ events and time
     def settle(
-        self, t: float, facts: int, values: Values, log: EventLog, probe: bool = True
-    ) -> tuple[int, Values]:
-        """Fire every triggered event at time ``t`` [s], cascading to a fixpoint."""
+        self, t: float, facts: int, values: Values, log: EventLog
+    ) -> tuple[int, Values, tuple[int, ...]]:
+        """Fire every triggered event at time ``t`` [s], cascading to a fixpoint.
+
+        Returns the facts, values and the processes active just after ``t``.
+        """
         events = self.ct.events
         fired: set[int] = set()
         for _ in range(self.config.max_cascade):
-            ahead = values
-            if probe:
-                _, flow = self.flow(facts, values)
-                if flow.moving:
-                    ahead = advance_values(values, flow, self.config.probe)
-            triggered = [
-                i for i in _candidates(facts, self._event_buckets, self._event_always)
-                if i not in fired and not facts & events[i].forb
-                and (events[i].pre(facts, values) or (ahead is not values
-                                                      and events[i].pre(facts, ahead)))
-            ]
+            act, flow = self.flow(facts, values)
+            ahead = advance_values(values, flow, self.config.probe) if flow.moving else values
+            cands = [i for i in _candidates(facts, self._event_buckets, self._event_always)
+                     if not facts & events[i].forb]
+            triggered = [i for i in cands if events[i].pre(facts, values)]
+            if ahead is not values and any(
+                i not in triggered and events[i].pre(facts, ahead) for i in cands
+            ):
+                # an event on its boundary: the reference semantics decides
+                return self._reference_events(t, facts, values, log)
+            if any(i in fired for i in triggered):
+                raise ZenoError(f"an event is triggered twice at t={t:.6f}")
             if not triggered:
-                return facts, values
+                return facts, values, act
             for i in sorted(triggered):
                 facts, values = events[i].effect(facts, values)
                 fired.add(i)
@@ -161,61 +182,87 @@ class Dynamics:
                 self.counters["events"] += 1
         raise ZenoError(f"events keep firing at t={t:.6f}: the task has an event loop")
 
+    def _reference_events(
+        self, t: float, facts: int, values: Values, log: EventLog
+    ) -> tuple[int, Values, tuple[int, ...]]:
+        from artiplan.semantics import VAL_TOLERANCES, EventError, State, fire_events
+
+        self.counters["reference_events"] += 1
+        try:
+            state, fired, flow = fire_events(
+                self.ct.task, State(t, _fact_set(facts), values), VAL_TOLERANCES
+            )
+        except EventError as exc:
+            raise ZenoError(str(exc)) from exc
+        for e in fired:
+            log.append((t, self._event_index[id(e)]))
+            self.counters["events"] += 1
+        act = tuple(sorted(self._proc_index[id(p)] for p in flow.processes))
+        return sum(1 << f for f in state.facts), state.values, act
+
     def advance(
-        self, t: float, facts: int, values: Values, until: float, log: EventLog
-    ) -> tuple[int, Values]:
-        """Let time pass from ``t`` to ``until`` [s]; events fire at their exact times."""
+        self, t: float, facts: int, values: Values, until: float, log: EventLog,
+        active: tuple[int, ...],
+    ) -> tuple[int, Values, tuple[int, ...]]:
+        """Let time pass from ``t`` to ``until`` [s] with ``active`` running from ``t``.
+
+        Events fire at their exact times, and the active processes are recomputed there (as the
+        validator does); reaching ``until`` itself changes nothing unless it is such a time.
+        """
+        act = active
         for _ in range(1_000_000):
             if until - t <= 0.0:
-                return facts, values
-            _, flow = self.flow(facts, values)
+                return facts, values, act
+            flow = self.flow_of(act, values)
             if not flow.moving:
-                return facts, values
+                return facts, values, act
             dt = self.next_change(values, flow, self.comps_for(flow, "dynamic"), until - t)
             if dt is None or t + dt >= until:
                 values = advance_values(values, flow, until - t)
-                return self.settle(until, facts, values, log, probe=False)
+                if dt is not None and t + dt >= until - 1e-12:  # critical exactly at until
+                    facts, values, act = self.settle(until, facts, values, log)
+                return facts, values, act
             values = advance_values(values, flow, dt)
             t += dt
-            facts, values = self.settle(t, facts, values, log)
+            facts, values, act = self.settle(t, facts, values, log)
         raise ZenoError(f"time cannot pass beyond t={t:.6f}")
 
     def wait_next(
-        self, t: float, facts: int, values: Values, log: EventLog
-    ) -> tuple[float, int, Values] | None:
+        self, t: float, facts: int, values: Values, log: EventLog, active: tuple[int, ...]
+    ) -> tuple[float, int, Values, tuple[int, ...]] | None:
         """Wait until just after the next time a watched condition may change truth value."""
-        _, flow = self.flow(facts, values)
+        flow = self.flow_of(active, values)
         if not flow.moving:
             return None
         dt = self.next_change(values, flow, self.comps_for(flow, "watched"))
         if dt is None:
             return None
         until = grid_after(t + dt, self.config.grid)
-        facts, values = self.advance(t, facts, values, until, log)
-        return until, facts, values
+        facts, values, act = self.advance(t, facts, values, until, log, active)
+        return until, facts, values, act
 
     def wait_until(
         self, t: float, facts: int, values: Values, cond: CondFn, cond_comps: frozenset[int],
-        log: EventLog, max_steps: int = 64, margin: float = 0.0,
-    ) -> tuple[float, int, Values] | None:
+        log: EventLog, active: tuple[int, ...], max_steps: int = 64, margin: float = 0.0,
+    ) -> tuple[float, int, Values, tuple[int, ...]] | None:
         """Wait until ``cond`` holds (then ``margin`` [s] more if it keeps holding), or None.
 
         Stops at the first change of the dynamics or of ``cond``'s comparisons; gives up after
         ``max_steps`` such changes or when nothing moves any more.
         """
+        act = active
         for _ in range(max_steps):
-            _, flow = self.flow(facts, values)
+            flow = self.flow_of(act, values)
             if not flow.moving:
                 return None
-            watch = self._watch(flow, cond_comps)
-            dt = self.next_change(values, flow, watch)
+            dt = self.next_change(values, flow, self._watch(flow, cond_comps))
             if dt is None:
                 return None
             t_next = grid_after(t + dt, self.config.grid)
-            facts, values = self.advance(t, facts, values, t_next, log)
+            facts, values, act = self.advance(t, facts, values, t_next, log, act)
             t = t_next
             if cond(facts, values):
-                return self._with_margin(t, facts, values, cond, cond_comps, log, margin)
+                return self._with_margin(t, facts, values, cond, cond_comps, log, act, margin)
         return None
 
     def _watch(self, flow: Flow, cond_comps: frozenset[int]) -> tuple[int, ...]:
@@ -225,27 +272,38 @@ class Dynamics:
 
     def _with_margin(
         self, t: float, facts: int, values: Values, cond: CondFn, cond_comps: frozenset[int],
-        log: EventLog, margin: float,
-    ) -> tuple[float, int, Values]:
+        log: EventLog, active: tuple[int, ...], margin: float,
+    ) -> tuple[float, int, Values, tuple[int, ...]]:
         if margin <= 0.0:
-            return t, facts, values
-        _, flow = self.flow(facts, values)
+            return t, facts, values, active
+        flow = self.flow_of(active, values)
         if not flow.moving:
-            return t, facts, values
+            return t, facts, values, active
         dt = self.next_change(values, flow, self._watch(flow, cond_comps), 2.0 * margin)
         step = margin if dt is None else min(margin, 0.5 * dt)
         until = round(math.floor((t + step) / self.config.grid) * self.config.grid, 9)
         if until <= t:
-            return t, facts, values
+            return t, facts, values, active
         trial: EventLog = []
-        f2, v2 = self.advance(t, facts, values, until, trial)
+        f2, v2, a2 = self.advance(t, facts, values, until, trial, active)
         if not cond(f2, v2):
-            return t, facts, values
+            return t, facts, values, active
         log.extend(trial)
-        return until, f2, v2
+        return until, f2, v2, a2
 
 
 Buckets = dict[int, list[int]]
+
+
+def _fact_set(facts: int) -> frozenset[int]:
+    out = []
+    i = 0
+    while facts:
+        if facts & 1:
+            out.append(i)
+        facts >>= 1
+        i += 1
+    return frozenset(out)
 
 
 def _buckets(ops: list) -> tuple[list[tuple[int, list[int]]], list[int]]:  # type: ignore[type-arg]

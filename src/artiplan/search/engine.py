@@ -25,7 +25,7 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from artiplan.search.compiled import CompiledTask
-from artiplan.search.dynamics import Dynamics, EventLog, Values, grid_after
+from artiplan.search.dynamics import Dynamics, EventLog, Values, ZenoError, grid_after
 from artiplan.search.heuristic import Evaluation, RateHeuristic
 
 Op = tuple  # type: ignore[type-arg]
@@ -62,6 +62,7 @@ class Node:
     op: Op
     events: EventLog
     by_action: bool
+    active: tuple[int, ...] = ()  # processes running from ``time`` on
     after: int = 0  # events[after:] were triggered by the node's action
 
 
@@ -82,28 +83,42 @@ class Search:
     def __init__(
         self, ct: CompiledTask, dyn: Dynamics, heuristic: RateHeuristic, config: SearchConfig,
         check_limits: Callable[[], None],
+        accept: Callable[[SearchOutcome], bool] = lambda outcome: True,
     ) -> None:
         self.ct, self.dyn, self.h, self.config = ct, dyn, heuristic, config
         self.check_limits = check_limits
+        self.accept = accept
         self.noops = [a.index for a in ct.actions if a.noop]
         self.nodes: list[Node] = []
-        self.seen: set[tuple[int, tuple[float | None, ...]]] = set()
+        self.seen: set[tuple[int, tuple[int, ...], tuple[float | None, ...]]] = set()
         self.counter = itertools.count()
-        self.stats: dict[str, float] = {"expanded": 0, "generated": 0, "evaluated": 0,
-                                        "duplicates": 0, "undo_pruned": 0}
+        self.stats: dict[str, float] = dict.fromkeys(
+            ("expanded", "generated", "evaluated", "duplicates", "undo_pruned", "invalid",
+             "rejected"), 0)
 
     # ------------------------------------------------------------------ successors
-    def _key(self, node: Node) -> tuple[int, tuple[float | None, ...]]:
+    def _key(self, node: Node) -> tuple[int, tuple[int, ...], tuple[float | None, ...]]:
         prec = self.config.value_precision
-        return node.facts, tuple(None if v != v else round(v, prec) for v in node.values)
+        values = tuple(None if v != v else round(v, prec) for v in node.values)
+        return node.facts, node.active, values
 
     def successor(self, parent: Node, pi: int, op: Op) -> Node | None:
         """The node ``op`` leads to from ``parent`` (index ``pi``), or None if inapplicable."""
+        try:
+            return self._successor(parent, pi, op)
+        except ZenoError:  # an event loop or an event triggered twice: not a valid happening
+            self.stats["invalid"] += 1
+            return None
+
+    def _successor(self, parent: Node, pi: int, op: Op) -> Node | None:
         log: EventLog = []
         dyn = self.dyn
         if op[0] == "a":
             t = max(parent.time, parent.ready)
-            facts, values = dyn.advance(parent.time, parent.facts, parent.values, t, log)
+            facts, values, _ = dyn.advance(
+                parent.time, parent.facts, parent.values, t, log, parent.active)
+            # a happening: events of that instant first, then the action (the validator's order)
+            facts, values, _ = dyn.settle(t, facts, values, log)
             act = self.ct.actions[op[1]]
             if facts & act.forb or not act.pre(facts, values):
                 return None
@@ -113,35 +128,40 @@ class Search:
                 self.stats["undo_pruned"] += 1
                 return None
             after = len(log)
-            facts, values = dyn.settle(t, facts, values, log)
+            facts, values, active = dyn.settle(t, facts, values, log)
             ready = round(t + self.config.epsilon, 9)
-            return Node(t, facts, values, ready, pi, op, log, True, after)
+            return Node(t, facts, values, ready, pi, op, log, True, active, after)
         if op[0] == "w":
-            res = dyn.wait_next(parent.time, parent.facts, parent.values, log)
+            res = dyn.wait_next(parent.time, parent.facts, parent.values, log, parent.active)
         else:
             if op[0] == "u":
                 g = self.h.groups[op[1]]
-                fn, comps, margin = g.fn, g.comps, self.config.goal_margin
+                fn, comps = g.fn, g.comps
             else:
-                fn, comps, margin = self.ct.goal, self.ct.goal_comps, self.config.goal_margin
+                fn, comps = self.ct.goal, self.ct.goal_comps
             res = dyn.wait_until(parent.time, parent.facts, parent.values, fn, comps, log,
-                                 self.config.max_wait_steps, margin)
+                                 parent.active, self.config.max_wait_steps,
+                                 self.config.goal_margin)
         if res is None:
             return None
-        t, facts, values = res
-        return Node(t, facts, values, parent.ready, pi, op, log, False)
+        t, facts, values, active = res
+        return Node(t, facts, values, parent.ready, pi, op, log, False, active)
 
     def closing(self, node: Node) -> tuple[float, int] | None | bool:
         """How a goal node ends the plan: True if its action does, (time, no-op) or None."""
         if node.by_action or node.parent < 0:
             return True
         t = max(node.time, node.ready)
-        facts, values = node.facts, node.values
-        if t > node.time:
-            trial: EventLog = []
-            facts, values = self.dyn.advance(node.time, facts, values, t, trial)
-            if not self.ct.goal(facts, values):
-                return None
+        trial: EventLog = []
+        try:
+            facts, values, _ = self.dyn.advance(
+                node.time, node.facts, node.values, t, trial, node.active)
+            # the closing action is a happening: the validator settles the state there
+            facts, values, _ = self.dyn.settle(t, facts, values, trial)
+        except ZenoError:
+            return None
+        if not self.ct.goal(facts, values):
+            return None
         for i in self.noops:
             if self.ct.actions[i].pre(facts, values):
                 return t, i
@@ -181,18 +201,21 @@ class Search:
             ni = len(self.nodes) - 1
             if self.ct.goal(node.facts, node.values):
                 end = self.closing(node)
-                if end is True:
-                    return SearchOutcome(ni, self.nodes, None, self.stats)
-                if end:
-                    return SearchOutcome(ni, self.nodes, end, self.stats)  # type: ignore[arg-type]
-            active, _ = self.dyn.flow(node.facts, node.values)
+                if end is not None:
+                    found = SearchOutcome(ni, self.nodes, None if end is True else end,  # type: ignore[arg-type]
+                                          self.stats)
+                    if self.accept(found):
+                        return found
+                    self.stats["rejected"] += 1
+            active = node.active
             ev = self.h.evaluate(node.facts, node.values, active)
             self.stats["evaluated"] += 1
             self.stats["expanded"] += 1
             if ev.h < best_h:
                 best_h = ev.h
                 boost += self.config.boost
-            for op2, pref in self._operators(node, ev, bool(active)):
+            moving = self.dyn.flow_of(active, node.values).moving
+            for op2, pref in self._operators(node, ev, moving):
                 entry = (ev.h, next(self.counter), ni, op2)
                 heapq.heappush(regular, entry)
                 if pref:
@@ -220,8 +243,8 @@ class Search:
 def initial_node(ct: CompiledTask, dyn: Dynamics) -> Node:
     """The initial state after the events it triggers at time 0."""
     log: EventLog = []
-    facts, values = dyn.settle(0.0, ct.init_facts, ct.init_values, log)
-    return Node(0.0, facts, values, 0.0, -1, ("init",), log, False)
+    facts, values, active = dyn.settle(0.0, ct.init_facts, ct.init_values, log)
+    return Node(0.0, facts, values, 0.0, -1, ("init",), log, False, active)
 
 
 __all__ = ["Node", "Search", "SearchConfig", "SearchOutcome", "grid_after", "initial_node"]
