@@ -176,7 +176,7 @@ def compile_condition(
 
 
 def fact_literals(cond: Condition) -> tuple[int, int] | None:
-    """(required mask, forbidden mask) if ``cond`` is a conjunction with facts at top level.
+    """(required mask, forbidden mask) of the facts at the top level of ``cond``; None if false.
 
     Only the top-level conjunction is read; the rest of the condition is checked by its function.
     Used to skip operators cheaply before evaluating their full condition.
@@ -184,6 +184,8 @@ def fact_literals(cond: Condition) -> tuple[int, int] | None:
     req = forb = 0
     parts = cond.parts if isinstance(cond, And) else (cond,)
     for part in parts:
+        if isinstance(part, Truth) and not part.value:
+            return None  # can never hold
         if isinstance(part, Atom):
             req |= 1 << part.fact
         elif isinstance(part, Not) and isinstance(part.operand, Atom):

@@ -306,7 +306,7 @@ def _fact_set(facts: int) -> frozenset[int]:
     return frozenset(out)
 
 
-def _buckets(ops: list) -> tuple[list[tuple[int, list[int]]], list[int]]:  # type: ignore[type-arg]
+def _buckets(ops: list) -> tuple[list[tuple[int, list[int]]], list[int]]:
     """Index operators by one required fact, so only those whose key fact holds are checked."""
     buckets: Buckets = {}
     always: list[int] = []

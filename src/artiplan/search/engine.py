@@ -28,7 +28,7 @@ from artiplan.search.compiled import CompiledTask
 from artiplan.search.dynamics import Dynamics, EventLog, Values, ZenoError, grid_after
 from artiplan.search.heuristic import Evaluation, RateHeuristic
 
-Op = tuple  # type: ignore[type-arg]
+Op = tuple
 
 
 @dataclass(frozen=True)

@@ -5,9 +5,9 @@ Sound over-approximation of everything any plan can reach:
 - fact literals: from the initial state, every action, event and process whose top-level fact
   literals are reachable adds its effects (deletes make the negative literal reachable); numeric
   preconditions are ignored (assumed satisfiable);
-- fluents: a fluent no reachable happening or process changes keeps its initial value; one that
-  reachable processes only increase (decrease) keeps its initial value as a lower (upper) bound;
-  any instantaneous numeric effect on it makes it unbounded.
+- fluents: intervals, by a fixpoint (:func:`fluent_bounds`): a fluent no reachable happening or
+  process changes keeps its initial value; one that processes only increase (decrease) keeps its
+  initial value as a lower (upper) bound; constant assignments widen the interval to the constant.
 
 The goal is then evaluated three-valued on these sets; if it cannot be true, no plan exists.
 """
@@ -16,8 +16,20 @@ from __future__ import annotations
 
 import math
 
-from artiplan.pddl.task import And, Atom, BinOp, Comparison, Condition, Not, Or, Task, Truth
-from artiplan.search.compiled import fact_literals, fluents_of, linearize, written_fluents
+from artiplan.pddl.task import (
+    And,
+    Atom,
+    BinOp,
+    Comparison,
+    Condition,
+    Effect,
+    Not,
+    NumericEffect,
+    Or,
+    Task,
+    Truth,
+)
+from artiplan.search.compiled import fact_literals, fluents_of, linearize
 
 Interval = tuple[float, float]
 
@@ -53,7 +65,10 @@ def _reachable_literals(task: Task) -> tuple[set[int], set[int], set[int]]:
 
 
 def _enabled(cond: Condition, pos: set[int], neg: set[int]) -> bool:
-    req, forb = fact_literals(cond) or (0, 0)
+    lits = fact_literals(cond)
+    if lits is None:
+        return False
+    req, forb = lits
     return all(i in pos for i in _bits(req)) and all(i in neg for i in _bits(forb))
 
 
@@ -69,33 +84,62 @@ def _bits(mask: int) -> list[int]:
 
 
 def fluent_bounds(task: Task) -> tuple[list[Interval], set[int], set[int]]:
-    """Reachable interval of every fluent, and the reachable facts (true, false)."""
+    """Reachable interval of every fluent, and the reachable facts (true, false).
+
+    A fixpoint: a process, action or event counts once its fact literals are reachable and its
+    numeric precondition can hold within the bounds found so far. Assigning a constant widens
+    the interval to include it; any other numeric effect, or a process, opens it in the
+    direction it can move.
+    """
     pos, neg, procs = _reachable_literals(task)
-    up: set[int] = set()
-    down: set[int] = set()
-    for i in procs:
-        for ce in task.processes[i].continuous:
-            lin = linearize(ce.rate)
-            if lin is not None and not lin[0]:
-                if lin[1] > 0:
-                    up.add(ce.fluent)
-                elif lin[1] < 0:
-                    down.add(ce.fluent)
-            else:
-                up.add(ce.fluent)
-                down.add(ce.fluent)
-    for op in list(task.actions) + list(task.events):
-        if _enabled(op.precondition, pos, neg):
-            for f in written_fluents(op.effect):
-                up.add(f)
-                down.add(f)
-    bounds: list[Interval] = []
-    for f, v in enumerate(task.init_values):
-        if v is None:
-            bounds.append((-math.inf, math.inf))
-            continue
-        bounds.append((-math.inf if f in down else v, math.inf if f in up else v))
+    bounds: list[Interval] = [
+        (-math.inf, math.inf) if v is None else (v, v) for v in task.init_values
+    ]
+    ops = [op for op in list(task.actions) + list(task.events)
+           if _enabled(op.precondition, pos, neg)]
+    changed = True
+    while changed:
+        changed = False
+        for i in sorted(procs):
+            proc = task.processes[i]
+            if True not in _possible(proc.precondition, bounds, pos, neg):
+                continue
+            for ce in proc.continuous:
+                lin = linearize(ce.rate)
+                sign = (lin[1] > 0) - (lin[1] < 0) if lin is not None and not lin[0] else 2
+                changed |= _widen(bounds, ce.fluent, sign)
+        for op in ops:
+            if True not in _possible(op.precondition, bounds, pos, neg):
+                continue
+            for ne in _numeric_effects(op.effect):
+                lin = linearize(ne.expr)
+                const = lin[1] if lin is not None and not lin[0] else None
+                if ne.op == "assign" and const is not None:
+                    lo, hi = bounds[ne.fluent]
+                    if not lo <= const <= hi:
+                        bounds[ne.fluent] = (min(lo, const), max(hi, const))
+                        changed = True
+                elif ne.op in ("increase", "decrease") and const is not None:
+                    up = (const > 0) == (ne.op == "increase")
+                    changed |= _widen(bounds, ne.fluent, 1 if up else -1) if const else False
+                else:
+                    changed |= _widen(bounds, ne.fluent, 2)
     return bounds, pos, neg
+
+
+def _numeric_effects(eff: Effect) -> list[NumericEffect]:
+    out = list(eff.numeric)
+    for ce in eff.conditional:
+        out.extend(_numeric_effects(ce.effect))
+    return out
+
+
+def _widen(bounds: list[Interval], f: int, sign: int) -> bool:
+    """Open fluent ``f``'s interval upwards (1), downwards (-1) or both (2); True if changed."""
+    lo, hi = bounds[f]
+    new = (-math.inf if sign in (-1, 2) else lo, math.inf if sign in (1, 2) else hi)
+    bounds[f] = new
+    return new != (lo, hi)
 
 
 def _possible(cond: Condition, b: list[Interval], pos: set[int], neg: set[int]) -> set[bool]:
