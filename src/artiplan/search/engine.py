@@ -123,12 +123,12 @@ class Search:
             if facts & act.forb or not act.pre(facts, values):
                 return None
             facts, values = act.effect(facts, values)
+            after = len(log)
+            facts, values, active = dyn.settle(t, facts, values, log)
             if parent.by_action and facts == self.nodes[parent.parent].facts:
                 # undoes the previous action after only epsilon: pointless (documented pruning)
                 self.stats["undo_pruned"] += 1
                 return None
-            after = len(log)
-            facts, values, active = dyn.settle(t, facts, values, log)
             ready = round(t + self.config.epsilon, 9)
             return Node(t, facts, values, ready, pi, op, log, True, active, after)
         if op[0] == "w":
