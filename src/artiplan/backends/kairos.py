@@ -53,11 +53,14 @@ class KairosPlanner(Planner):
     def command(
         self, domain: Path, problem: Path, time_limit: float | None, memory_limit: float | None
     ) -> list[str]:
-        """The kairos command line; its own limits sit just above ours, which are enforced."""
+        """The kairos command line; its own limits sit above ours, which are enforced."""
         cmd = [kairos_program(), "solve", str(domain), str(problem), "--threads", "1",
                "--no-anytime", "--format", "ipc"]
         if time_limit is not None:
-            cmd += ["--timeout", str(math.ceil(time_limit) + 1)]
+            # Kairos's --timeout is wall-clock time; on a shared machine it would stop the search
+            # long before our CPU-time limit. Set it at our wall watchdog; the CPU limit rules.
+            wall = Limits().wall_factor * time_limit + Limits().wall_slack
+            cmd += ["--timeout", str(math.ceil(wall))]
         if memory_limit is not None:
             cmd += ["--memory", str(int(memory_limit))]
         return cmd
