@@ -132,11 +132,11 @@ def test_wrap_events_never_land_on_each_others_boundary(model: str) -> None:
     up = construct(d, ":event", "back-to-zero")
     down = construct(d, ":event", "back-to-360")
     assert up[":precondition"] == [">=", ["angle", "?l", "?p"], "360"]
-    assert up[":effect"] == ["decrease", ["angle", "?l", "?p"], "360"]
+    assert up[":effect"] == ["assign", ["angle", "?l", "?p"], "0"]
     assert down[":precondition"] == ["<=", ["angle", "?l", "?p"], "-0.01"]
-    assert down[":effect"] == ["increase", ["angle", "?l", "?p"], "360"]
-    # Landing points (0 and 359.99) are 0.01 from the other boundary: 100x VAL's slack (1e-4).
-    assert 360 - 360 - (-0.01) > 1e-3 and 360 - (-0.01 + 360) > 1e-3
+    assert down[":effect"] == ["assign", ["angle", "?l", "?p"], "359.99"]
+    # Landing points are 0.01 from the other event's boundary: 100x VAL's slack (1e-4).
+    assert 0 - (-0.01) >= 100 * 1e-4 and 360 - 359.99 >= 100 * 1e-4 - 1e-12
 
 
 @pytest.mark.parametrize("model", ["ng", "ucm", "uacm"])
