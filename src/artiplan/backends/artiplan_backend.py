@@ -38,7 +38,10 @@ class ArtiplanPlanner(Planner):
         cmd = [sys.executable, "-m", "artiplan", "plan", str(domain), str(problem),
                "-o", str(plan_file)]
         if time_limit is not None:
-            cmd += ["--time-limit", f"{time_limit:g}"]
+            # The command limits wall time too; on a shared machine that would stop it before
+            # its CPU time is used up. Give it our wall watchdog; the runner's CPU limit rules.
+            wall = Limits().wall_factor * time_limit + Limits().wall_slack
+            cmd += ["--time-limit", f"{wall:g}"]
         if memory_limit is not None:
             cmd += ["--memory-limit", f"{memory_limit:g}"]
         return cmd
