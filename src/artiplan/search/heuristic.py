@@ -30,6 +30,7 @@ from artiplan.search.compiled import (
     compile_condition,
     fact_literals,
     linearize,
+    written_fluents,
 )
 from artiplan.search.intervals import (
     Intervals,
@@ -101,6 +102,14 @@ class RateHeuristic:
                 if lin is not None:
                     self.movers.setdefault(fluent, []).append((p.index, lin))
         self.proc_lits = [self._lits(p.req, p.forb) for p in ct.processes]
+        # actions that change what a process's numeric precondition reads (e.g. the held link)
+        writes = [written_fluents(a.effect) for a in ct.task.actions]
+        self.enablers: list[tuple[int, ...]] = []
+        for proc in ct.processes:
+            reads: set[int] = set()
+            for c in proc.pre_comps:
+                reads |= ct.comps.items[c].fluents
+            self.enablers.append(tuple(i for i, w in enumerate(writes) if w & reads))
         self.jumps = self._jumps()
         self._side_effects()
         self.seconds = 0.0  # time spent in evaluate() [s]
@@ -298,7 +307,13 @@ class RateHeuristic:
                     needed_here = False
                 else:
                     h += extra
+                    before = len(plan)
                     self._relaxed_plan(self.proc_lits[best_p], costs, plan, preferred)
+                    if len(plan) == before:  # its facts hold: a numeric precondition is false
+                        h += 1.0
+                        preferred.update(
+                            a for a in self.enablers[best_p]
+                            if all(costs[0][q] == 0.0 for q in self.pre_lits[a]))
             needed = needed or needed_here
         h += len(plan)
         return Evaluation(h, tuple(sorted(preferred)), tuple(waits), needed, unsat)
@@ -324,7 +339,10 @@ class RateHeuristic:
             d = dist_cache[up]
             if d == math.inf:
                 continue
-            e = 0.0 if p in active_set else sum(costs[0][lit] for lit in self.proc_lits[p])
+            if p in active_set:
+                e = 0.0
+            else:  # at least one happening is needed to switch it on
+                e = max(1.0, sum(costs[0][lit] for lit in self.proc_lits[p]))
             extra = cfg.time_weight * d / abs(r)
             if e + extra < best:
                 extra += self._damage(p, g.fluent, d / abs(r), values, satisfied)
