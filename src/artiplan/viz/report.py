@@ -59,8 +59,9 @@ def plot_par10(
         for i, variant in enumerate(variants):
             xs = [s for s in sizes if (variant, s) in scores[planner]]
             ys = [scores[planner][(variant, s)] for s in xs]
-            if xs:
-                ax.plot(xs, ys, marker=_MARKERS[i % len(_MARKERS)], label=variant_label(variant))
+            if xs:  # one color and marker per variant in every panel
+                ax.plot(xs, ys, marker=_MARKERS[i % len(_MARKERS)], color=f"C{i}",
+                        label=variant_label(variant))
         ax.axhline(10 * limit, color="grey", linestyle=":", linewidth=1)
         ax.set_yscale("log")
         ax.set_title(planner)
@@ -68,9 +69,14 @@ def plot_par10(
         ax.set_xticks(list(sizes))
         ax.grid(True, which="major", alpha=0.3)
     axes[0][0].set_ylabel(f"PAR10 [CPU s] (unsolved = {10 * limit:g} s)")
-    axes[0][-1].legend(loc="lower right", fontsize=8)
+    handles: dict[str, object] = {}
+    for ax in axes[0]:
+        for handle, label in zip(*ax.get_legend_handles_labels(), strict=True):
+            handles.setdefault(label, handle)
     fig.suptitle(f"PAR10 per size, CPU-time limit {limit:g} s")
-    fig.tight_layout()
+    fig.tight_layout(rect=(0, 0, 1, 0.93))
+    fig.legend(list(handles.values()), list(handles), loc="upper right", fontsize=8,
+               ncol=min(len(handles), 6))
     paths = _save(fig, base)
     plt.close(fig)
     return paths
@@ -113,7 +119,7 @@ def plot_ratio(
     """Scatter of per-problem CPU time, planner a (y) against b (x), log-log, with y = x.
 
     Args:
-        ratios: "a vs b" -> (time b, time a) pairs [s] on problems both solved.
+        ratios: "a (y) vs b (x)" -> (time b, time a) pairs [s] on problems both solved.
         base: output path without suffix.
         limit: the CPU-time limit [s] (the axes end there).
     """
@@ -131,9 +137,9 @@ def plot_ratio(
     ax.set_yscale("log")
     ax.set_xlim(low, limit * 1.2)
     ax.set_ylim(low, limit * 1.2)
-    ax.set_xlabel("CPU time of the other planner [s]")
-    ax.set_ylabel("CPU time of the first planner [s]")
-    ax.set_title("Per problem, solved by both (below the line: first is faster)")
+    ax.set_xlabel("CPU time of planner b [s]")
+    ax.set_ylabel("CPU time of planner a [s]")
+    ax.set_title("Per problem solved by both: below the line, a is faster", fontsize=10)
     ax.grid(True, alpha=0.3)
     ax.legend(fontsize=8)
     fig.tight_layout()
@@ -247,7 +253,7 @@ def _comparisons(
         name = f"compare-{a}-vs-{b}.md"
         put(name, f"# {a} vs {b}: per problem\n\n" + tables.comparison_markdown(found, a, b))
         lines.append(f"- [{a} vs {b}]({name}): time, makespan and actions, with ratios {a} / {b}")
-        points[f"{a} vs {b}"] = [
+        points[f"a = {a}, b = {b}"] = [
             (float(p.b["cpu_s"]), float(p.a["cpu_s"]))
             for p in found if agg.solved(p.a) and agg.solved(p.b)
         ]
