@@ -82,3 +82,13 @@ def test_simulate_prints_events_and_draws(files, tmp_path, capsys) -> None:  # t
     assert png.stat().st_size > 10_000
     samples = [r for r in csv.reader(out.open()) if r[1] == ""]
     assert len(samples) == 9  # 0, 0.5, ..., 4.0
+
+
+def test_an_event_listed_as_an_action_is_a_bad_operator_except_in_enhsp_files(  # type: ignore[no-untyped-def]
+    files, tmp_path, capsys
+) -> None:
+    val_style = _plan(tmp_path, "0: (open)\n1.5: (overflow)\n4.0: (close)\n")
+    assert main(["validate", *map(str, files), str(val_style)]) == 4
+    assert "bad operator (overflow)" in capsys.readouterr().out
+    enhsp = _plan(tmp_path, "0: (open)\n2.0: (overflow)\n4.0: (close)\n4.0: @PlanEND\n")
+    assert main(["validate", *map(str, files), str(enhsp)]) == 0

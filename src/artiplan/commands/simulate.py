@@ -27,14 +27,14 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from artiplan.pddl import load_task
     from artiplan.semantics import simulate
-    from artiplan.semantics.plan_io import format_plan, read_plan, with_events
+    from artiplan.semantics.plan_io import format_plan, read_plan_for, with_events
 
     if args.sample is not None and not args.sample > 0:
         raise UsageError(f"--sample must be positive, got {args.sample}")
     if not args.extend >= 0:
         raise UsageError(f"--extend must not be negative, got {args.extend}")
     task = load_task(args.domain, args.problem)
-    plan = read_plan(args.plan, [e.name for e in task.events])
+    plan = read_plan_for(args.plan, [e.name for e in task.events])
     traj = simulate(task, plan, sample_dt=args.sample, extend=args.extend)
     print(format_plan(with_events(plan, traj.events)), end="")
     if args.trajectory is not None:

@@ -30,12 +30,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     from artiplan.pddl import load_task
     from artiplan.semantics import validate
-    from artiplan.semantics.plan_io import format_plan, read_plan, with_events
+    from artiplan.semantics.plan_io import format_plan, read_plan_for, with_events
 
     if not args.tolerance > 0:
         raise UsageError(f"--tolerance must be positive, got {args.tolerance}")
     task = load_task(args.domain, args.problem)
-    plan = read_plan(args.plan, [e.name for e in task.events])
+    plan = read_plan_for(args.plan, [e.name for e in task.events])
     report = validate(task, plan, args.tolerance)
     if args.verbose:
         print(format_plan(with_events(plan, report.events)), end="")

@@ -119,6 +119,14 @@ def read_plan(path: str | Path, event_names: Collection[str] = ()) -> Plan:
     return parse_plan(text, str(p), event_names)
 
 
+def read_plan_for(path: str | Path, event_names: Collection[str]) -> Plan:
+    """Read a plan file the way ``artiplan validate`` does: as VAL does (a line naming an event
+    stays an action, so the validator reports it as a bad operator), except in ENHSP's files
+    (recognised by ``@PlanEND`` or ``-----waiting----``), whose event lines become events."""
+    plan = read_plan(path)
+    return read_plan(path, event_names) if plan.end is not None else plan
+
+
 def parse_enhsp_output(text: str, event_names: Collection[str] = ()) -> Plan:
     """The plan in ENHSP's printed output (``Found Plan:`` lines), ignoring everything else."""
     keep: list[str] = []
