@@ -92,3 +92,27 @@ def test_an_event_listed_as_an_action_is_a_bad_operator_except_in_enhsp_files(  
     assert "bad operator (overflow)" in capsys.readouterr().out
     enhsp = _plan(tmp_path, "0: (open)\n2.0: (overflow)\n4.0: (close)\n4.0: @PlanEND\n")
     assert main(["validate", *map(str, files), str(enhsp)]) == 0
+
+
+GROWTH = """
+(define (domain growth)
+  (:requirements :strips :numeric-fluents :time)
+  (:predicates (doubled))
+  (:functions (x))
+  (:action observe :parameters () :precondition (and) :effect (and))
+  (:process grow :parameters () :precondition (and) :effect (increase (x) (* #t (x))))
+  (:event double :parameters () :precondition (and (not (doubled)) (>= (x) 2))
+    :effect (doubled)))
+"""
+GROWTH_PROBLEM = "(define (problem g) (:domain growth) (:init (= (x) 1)) (:goal (doubled)))"
+
+
+def test_non_polynomial_rates_say_so_and_still_time_events(tmp_path, capsys) -> None:  # type: ignore[no-untyped-def]
+    (tmp_path / "d.pddl").write_text(GROWTH)
+    (tmp_path / "p.pddl").write_text(GROWTH_PROBLEM)
+    plan = _plan(tmp_path, "1.0: (observe)\n")
+    args = [str(tmp_path / "d.pddl"), str(tmp_path / "p.pddl"), str(plan)]
+    assert main(["validate", *args, "-v"]) == 0
+    out = capsys.readouterr().out
+    assert "numeric fallback" in out
+    assert "; 0.693147: (double)" in out  # x = e^t reaches 2 at ln 2

@@ -37,6 +37,8 @@ def run(args: argparse.Namespace) -> int:
     plan = read_plan_for(args.plan, [e.name for e in task.events])
     traj = simulate(task, plan, sample_dt=args.sample, extend=args.extend)
     print(format_plan(with_events(plan, traj.events)), end="")
+    if not traj.exact:
+        print("; note: some rates are not polynomial: numeric fallback used (RK4, step 0.001 s)")
     if args.trajectory is not None:
         traj.to_csv(args.trajectory)
         print(f"wrote {args.trajectory}")

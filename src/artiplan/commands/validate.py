@@ -41,6 +41,11 @@ def run(args: argparse.Namespace) -> int:
         print(format_plan(with_events(plan, report.events)), end="")
     if args.trajectory is not None and report.trajectory is not None:
         report.trajectory.to_csv(args.trajectory)
+    if report.trajectory is not None and not report.trajectory.exact:
+        print(
+            "note: some rates are not polynomial: numeric fallback used (RK4, step 0.001 s; "
+            "crossing times to 1e-9 s)"
+        )
     if report.valid:
         print(f"Plan valid (makespan {plan.makespan:.6f} s, {len(report.events)} events)")
         return int(ExitCode.OK)

@@ -50,6 +50,11 @@ class Trajectory:
     end: float | None = None
 
     @property
+    def exact(self) -> bool:
+        """True when every flow was solved exactly (no numeric fallback anywhere)."""
+        return all(s.flow.exact for s in self.segments)
+
+    @property
     def columns(self) -> list[str]:
         """CSV header: ``time,happening,<fluent>...`` with fluents as ``angle(L2,z-axis)``."""
         return ["time", "happening", *(fluent_column(f) for f in self.fluents)]
