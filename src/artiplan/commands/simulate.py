@@ -4,6 +4,7 @@ plot of the angles over time (happenings marked)."""
 from __future__ import annotations
 
 import argparse
+from collections.abc import Callable
 from pathlib import Path
 
 from artiplan.errors import ExitCode, UsageError
@@ -24,6 +25,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
 
 
+def write_output(path: Path, write: Callable[[Path], None]) -> None:
+    """``write(path)``, creating missing folders; an unwritable path is a usage error."""
+    try:
+        path.parent.mkdir(parents=True, exist_ok=True)
+        write(path)
+    except OSError as exc:
+        raise UsageError(f"cannot write {str(path)!r}: {exc.strerror or exc}") from None
+
+
 def run(args: argparse.Namespace) -> int:
     from artiplan.pddl import load_task
     from artiplan.semantics import simulate
@@ -40,11 +50,12 @@ def run(args: argparse.Namespace) -> int:
     if not traj.exact:
         print("; note: some rates are not polynomial: numeric fallback used (RK4, step 0.001 s)")
     if args.trajectory is not None:
-        traj.to_csv(args.trajectory)
+        write_output(args.trajectory, traj.to_csv)
         print(f"wrote {args.trajectory}")
     if args.plot is not None:
         from artiplan.viz.trajectory import plot_trajectory
 
-        plot_trajectory(traj, args.plot, title=f"{task.domain_name} / {task.problem_name}")
+        title = f"{task.domain_name} / {task.problem_name}"
+        write_output(args.plot, lambda path: plot_trajectory(traj, path, title=title))
         print(f"wrote {args.plot}")
     return int(ExitCode.OK)

@@ -40,7 +40,9 @@ def run(args: argparse.Namespace) -> int:
     if args.verbose:
         print(format_plan(with_events(plan, report.events)), end="")
     if args.trajectory is not None and report.trajectory is not None:
-        report.trajectory.to_csv(args.trajectory)
+        from artiplan.commands.simulate import write_output
+
+        write_output(args.trajectory, report.trajectory.to_csv)
     if report.trajectory is not None and not report.trajectory.exact:
         print(
             "note: some rates are not polynomial: numeric fallback used (RK4, step 0.001 s; "
