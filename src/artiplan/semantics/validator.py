@@ -251,25 +251,28 @@ def _on_event(
     return cb
 
 
-def _run_happenings(run: _Run, plan: Plan, state: State, traj: Trajectory) -> tuple[State, Flow]:
-    task = run.task
-    groups = _groups(plan)
-    resolved: list[list[tuple[TimedAction, GroundAction]]] = []
+def _resolve_all(
+    task: Task, groups: list[tuple[float, list[TimedAction]]]
+) -> list[list[tuple[TimedAction, GroundAction]]]:
+    """The ground action of every plan line, per happening; "bad operator" if one is unknown."""
+    resolved = []
     for index, (t, timed) in enumerate(groups, 1):
         pairs = []
         for ta in timed:
             ga = resolve(task, ta)
             if ga is None:
                 where = f" (plan line {ta.line})" if ta.line else ""
-                raise _fail(
-                    "bad-operator",
-                    f"bad operator {ta.signature} at time {t:.6f}{where}",
-                    index,
-                    t,
-                    line=ta.line,
-                )
+                reason = f"bad operator {ta.signature} at time {t:.6f}{where}"
+                raise _fail("bad-operator", reason, index, t, line=ta.line)
             pairs.append((ta, ga))
         resolved.append(pairs)
+    return resolved
+
+
+def _run_happenings(run: _Run, plan: Plan, state: State, traj: Trajectory) -> tuple[State, Flow]:
+    task = run.task
+    groups = _groups(plan)
+    resolved = _resolve_all(task, groups)
     cb, after_cb = _on_event(traj), _on_event(traj, after=True)
     recent: list[tuple[float, list[tuple[TimedAction, GroundAction]]]] = []
     flow = None
