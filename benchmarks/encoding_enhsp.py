@@ -13,6 +13,7 @@ from __future__ import annotations
 
 import argparse
 import importlib.util
+import re
 import subprocess
 import tempfile
 import time
@@ -21,7 +22,7 @@ from pathlib import Path
 from artiplan.encoding import write_suite
 from artiplan.pddl import load_task
 from artiplan.semantics import validate
-from artiplan.semantics.plan import Plan
+from artiplan.semantics.plan import Plan, TimedAction
 from artiplan.semantics.plan_io import parse_enhsp_output
 
 MODELS = ["ng", "ucm-0.1", "ucm-0.5", "ucm-1.0", "uacm-0.1", "uacm-0.5"]
@@ -37,7 +38,7 @@ def run_one(domain: Path, problem: Path, timeout: float) -> tuple[str, float, st
     start = time.monotonic()
     try:
         proc = subprocess.run(
-            ["java", "-jar", str(enhsp_jar()), "-o", str(domain), "-f", str(problem)],
+            ["java", "-jar", str(enhsp_jar()), "-o", str(domain), "-f", str(problem), "-pt"],
             capture_output=True,
             text=True,
             timeout=timeout,
@@ -55,14 +56,47 @@ def run_one(domain: Path, problem: Path, timeout: float) -> tuple[str, float, st
     return "no-plan", wall, out
 
 
-def check_plan(domain: Path, problem: Path, out: str) -> str:
-    """Validate ENHSP's printed plan (waits dropped; an observe appended at its end time)."""
-    plan = parse_enhsp_output(out)
-    end = plan.end if plan.end is not None else max((a.time for a in plan.actions), default=0.0)
-    from artiplan.semantics.plan import TimedAction
+_STEP = re.compile(r"\((\d+(?:\.\d+)?),\(([^()]*)\)\)")
 
-    actions = (*plan.actions, TimedAction(end + 0.001, "observe"))
-    report = validate(load_task(domain, problem), Plan(actions, (), None))
+
+def simulated_plan(out: str, events: set[str], delta: float = 1.0) -> Plan | None:
+    """The plan from ENHSP's ``Plan under Validation/Simulation`` line (printed with ``-pt``).
+
+    ENHSP's ``-----waiting---- [t]`` lines misstate the last wait of some plans (``[0]`` after
+    seven one-second waits); this line lists every step, so the end is the last wait + delta.
+    """
+    line = next((x for x in out.splitlines() if x.startswith("Plan under Validation")), None)
+    if line is None:
+        return None
+    actions, end = [], 0.0
+    for t, body in _STEP.findall(line):
+        name, *args = body.split()
+        if name.startswith("------>"):
+            end = float(t) + delta
+        elif name not in events:
+            actions.append(TimedAction(float(t), name, tuple(args)))
+            end = max(end, float(t))
+    return Plan(tuple(actions), (), end)
+
+
+def check_plan(domain: Path, problem: Path, out: str) -> str:
+    """Validate ENHSP's plan under VAL's semantics.
+
+    As conventions.md asks, actions ENHSP puts at one instant (stop X, start Y) are spread
+    0.001 s apart in their order; an ``observe`` ends the plan at ENHSP's end time.
+    """
+    events = set(re.findall(r"\(:event (\S+)", domain.read_text()))
+    plan = simulated_plan(out, events) or parse_enhsp_output(out)
+    actions: list[TimedAction] = []
+    for a in plan.actions:
+        t = a.time
+        if actions and t <= actions[-1].time + 1e-9:
+            t = actions[-1].time + 0.001
+        actions.append(TimedAction(t, a.name, a.args))
+    end = plan.end if plan.end is not None else 0.0
+    end = max(end, actions[-1].time if actions else 0.0) + 0.001
+    actions.append(TimedAction(end, "observe"))
+    report = validate(load_task(domain, problem), Plan(tuple(actions), (), None))
     return "valid" if report.valid else f"invalid ({report.kind}: {report.reason[:70]})"
 
 

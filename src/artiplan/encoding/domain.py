@@ -67,7 +67,7 @@ def _header(options: EncodingOptions) -> str:
     func_text = "\n    ".join(functions)
     return f"""(define (domain {domain_name(options)})
   (:requirements :strips :typing :negative-preconditions :disjunctive-preconditions
-    :numeric-fluents :time)
+    :fluents :time)
   (:types link plane)
   (:constants {planes} - plane)
   (:predicates
