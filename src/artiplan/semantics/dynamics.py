@@ -24,6 +24,7 @@ does too) and ``(>= x c)`` at the same instant.
 
 from __future__ import annotations
 
+import itertools
 import math
 from collections.abc import Callable, Iterator, Sequence
 from dataclasses import dataclass, field
@@ -33,6 +34,8 @@ from artiplan.pddl.task import (
     Atom,
     Comparison,
     Condition,
+    Const,
+    FluentRef,
     GroundProcess,
     Not,
     NumExpr,
@@ -98,10 +101,12 @@ class Flow:
     polys: tuple[P.Poly, ...] | None
     config: FlowConfig = DEFAULT_FLOW
     _numeric: Integrator | None = field(default=None, repr=False)
-    #: Per comparison: its difference polynomial and positive roots along this flow.
-    _memo: dict[Comparison, tuple[P.Poly | None, list[float] | None]] = field(
+    #: Per comparison (by identity): it, its difference polynomial and its positive roots.
+    _memo: dict[int, tuple[Comparison, P.Poly | None, list[float] | None]] = field(
         default_factory=dict, repr=False
     )
+    #: Roots of ``fluent - constant``, by (fluent, constant).
+    _simple: dict[tuple[int, float], list[float]] = field(default_factory=dict, repr=False)
 
     def values_at(self, dt: float) -> tuple[float, ...]:
         """Every fluent's value at ``start.time + dt`` [s] (dt >= 0)."""
@@ -169,18 +174,19 @@ def settled_flow(
     procs = per_task(task, ("processes", config.zero_tol), lambda: _compile_processes(task, config))
     facts, values = state.facts, state.values
     point = [fn(facts, values) for _, fn, _, _ in procs]
-    # Only a process with a comparison on its boundary can differ from its point truth.
-    edge = [near(values) for _, _, _, near in procs]
     active = tuple(p for (p, *_), ok in zip(procs, point, strict=True) if ok)
     flow = make_flow(task, state, active, config)
+    # Only a process with a comparison on its boundary can differ from its point truth.
+    edge = [k for k, (_, _, _, near) in enumerate(procs) if near(values)]
+    if not edge:
+        return flow
     for _ in range(max_rounds):
-        if flow.is_static and not active:
-            return flow
-        nxt = tuple(
-            p
-            for (p, _, reads, _), ok, on_edge in zip(procs, point, edge, strict=True)
-            if (right_holds(p.precondition, flow) if on_edge and reads & flow.changing else ok)
-        )
+        truth = list(point)
+        for k in edge:
+            proc, _, reads, _ = procs[k]
+            if reads & flow.changing:
+                truth[k] = right_holds(proc.precondition, flow)
+        nxt = tuple(p for (p, *_), ok in zip(procs, truth, strict=True) if ok)
         if nxt == active:
             return flow
         active = nxt
@@ -207,23 +213,39 @@ def _compile_processes(
 
 
 def _comparison_poly(comp: Comparison, flow: Flow) -> P.Poly | None:
-    hit = flow._memo.get(comp)
-    if hit is not None:
-        return hit[0]
+    hit = flow._memo.get(id(comp))
+    if hit is not None and hit[0] is comp:
+        return hit[1]
     left = flow.expr_poly(comp.left)
     right = flow.expr_poly(comp.right)
     poly = None if left is None or right is None else P.sub(left, right)
-    flow._memo[comp] = (poly, None)
+    flow._memo[id(comp)] = (comp, poly, None)
     return poly
 
 
 def _comparison_roots(comp: Comparison, flow: Flow) -> list[float]:
-    """All positive roots of ``left - right`` along an exact flow (memoised per flow)."""
+    """All positive roots of ``left - right`` along an exact flow (memoised per flow).
+
+    The common ``fluent op constant`` shape is memoised by (fluent, constant), so the many
+    processes that test the same angle against the same bound share one root computation.
+    """
+    left, right = comp.left, comp.right
+    if isinstance(left, Const) and isinstance(right, FluentRef):
+        left, right = right, left
+    if isinstance(left, FluentRef) and isinstance(right, Const) and flow.polys is not None:
+        key = (left.index, right.value)
+        roots = flow._simple.get(key)
+        if roots is None:
+            p = flow.polys[left.index]
+            diff = (p[0] - right.value, *p[1:])
+            roots = P.positive_roots(diff, math.inf, flow.config.zero_tol)
+            flow._simple[key] = roots
+        return roots
     poly = _comparison_poly(comp, flow)
-    cached = flow._memo[comp][1]
+    cached = flow._memo[id(comp)][2]
     if cached is None:
         cached = [] if poly is None else P.positive_roots(poly, math.inf, flow.config.zero_tol)
-        flow._memo[comp] = (poly, cached)
+        flow._memo[id(comp)] = (comp, poly, cached)
     return cached
 
 
@@ -296,8 +318,12 @@ def crossing_time(
     comps = _dynamic_comparisons(cond, flow.changing)
     if not comps:
         return None
+    candidates = _candidate_times(comps, flow, horizon)
+    first = next(candidates, None)
+    if first is None:
+        return None
     initial = right_holds(cond, flow, 0.0)
-    for r in _candidate_times(comps, flow, horizon):
+    for r in itertools.chain((first,), candidates):
         if point_holds(cond, flow, r, tol) != initial or right_holds(cond, flow, r) != initial:
             return r
     return None
