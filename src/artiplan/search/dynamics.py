@@ -3,8 +3,10 @@
 Rules (VAL's, as the planner needs them):
 
 - Processes run while their precondition holds; which ones run just after a time point is decided
-  on the *right limit* (the values a moment ``probe`` later), so a process whose precondition
-  becomes true as an angle leaves a boundary starts at once.
+  on the *right limit*, with the validator's rules (:mod:`artiplan.search.rightlimit`), so a
+  process whose precondition becomes true as an angle leaves a boundary starts at once. The set
+  is kept through waits and recomputed only where the validator recomputes it: at events and
+  at actions.
 - An event fires at the earliest time its precondition becomes true: the exact root of the
   comparison, found with the polynomial flow (:mod:`artiplan.search.flow`). Events cascade to a
   fixpoint; each event fires at most once per time point.
@@ -19,8 +21,20 @@ import math
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
+import numpy as np
+
 from artiplan.search.compiled import CompiledTask, CondFn
-from artiplan.search.flow import Flow, advance_values, comparison_poly, compute_flow, first_root
+from artiplan.search.flow import (
+    DT_MIN,
+    Flow,
+    FlowShape,
+    advance_values,
+    comparison_poly,
+    compute_flow,
+    first_root,
+    flow_shape,
+)
+from artiplan.search.rightlimit import RightLimit
 
 Values = tuple[float, ...]
 EventLog = list[tuple[float, int]]
@@ -36,13 +50,11 @@ class DynamicsConfig:
 
     Attributes:
         grid: Happening times are multiples of this [s] (plan files print 6 decimals).
-        probe: Look-ahead [s] deciding what holds just after a time point.
         fallback_step: Longest step [s] when rates are not polynomial (counted in the stats).
         max_cascade: Most rounds of events at one time point before declaring a Zeno loop.
     """
 
     grid: float = 1e-6
-    probe: float = 1e-7
     fallback_step: float = 0.1
     max_cascade: int = 200
 
@@ -67,10 +79,11 @@ class Dynamics:
             all(lin is not None and not lin[0] for _, lin, _ in p.rates) for p in self.ct.processes
         ]
         self._flow_cache: dict[tuple[int, ...], Flow] = {}
-        self._proc_index = {id(p): i for i, p in enumerate(self.ct.task.processes)}
-        self._event_index = {id(e): i for i, e in enumerate(self.ct.task.events)}
-        self.counters.setdefault("reference_flows", 0)
-        self.counters.setdefault("reference_events", 0)
+        self._shapes: dict[tuple[int, ...], FlowShape] = {}
+        self._last_flow: tuple[tuple[int, ...], Values, Flow] | None = None
+        self._split_cache: dict[tuple[int, ...], tuple[LinearRows | None, tuple[int, ...]]] = {}
+        self.right = RightLimit(self.ct)
+        self.counters.setdefault("boundary_flows", 0)
         self._comp_cache: dict[tuple[frozenset[int], str], tuple[int, ...]] = {}
 
     # ------------------------------------------------------------------ processes and flows
@@ -89,32 +102,34 @@ class Dynamics:
         cached = self._flow_cache.get(active)
         if cached is not None:
             return cached
-        flow = compute_flow(self.ct.processes, active, values, self.config.fallback_step)
+        last = self._last_flow
+        if last is not None and last[0] == active and last[1] is values:
+            return last[2]
+        shape = self._shapes.get(active)
+        if shape is None:
+            shape = self._shapes[active] = flow_shape(self.ct.processes, active)
+        flow = compute_flow(self.ct.processes, active, values, self.config.fallback_step, shape)
         if all(self._const_rates[i] for i in active):
             self._flow_cache[active] = flow
+        self._last_flow = (active, values, flow)
         return flow
 
     def flow(self, facts: int, values: Values) -> tuple[tuple[int, ...], Flow]:
-        """Active processes and their flow just after now (right limit).
-
-        When a process sits on the boundary of its precondition (the look-ahead disagrees with
-        the present), the reference semantics decides (``semantics.settled_flow``).
-        """
+        """Active processes and their flow just after now (the validator's right limit)."""
         act = self.active(facts, values)
-        flow = self.flow_of(act, values)
-        if flow.moving:
-            ahead = self.active(facts, advance_values(values, flow, self.config.probe))
-            if ahead != act:
-                self.counters["reference_flows"] += 1
-                act = self._reference_active(facts, values)
-                flow = self.flow_of(act, values)
-        return act, flow
+        cands = [i for i in _candidates(facts, self._proc_buckets, self._proc_always)
+                 if not facts & self.ct.processes[i].forb]
+        settled = self.right.settle_active(
+            facts, values, cands, act, lambda a: self.flow_of(a, values), self._changing)
+        if settled != act:
+            self.counters["boundary_flows"] += 1
+        return settled, self.flow_of(settled, values)
 
-    def _reference_active(self, facts: int, values: Values) -> tuple[int, ...]:
-        from artiplan.semantics import State, settled_flow
-
-        flow = settled_flow(self.ct.task, State(0.0, _fact_set(facts), values))
-        return tuple(sorted(self._proc_index[id(p)] for p in flow.processes))
+    def _changing(self, active: tuple[int, ...]) -> frozenset[int]:
+        shape = self._shapes.get(active)
+        if shape is None:
+            shape = self._shapes[active] = flow_shape(self.ct.processes, active)
+        return frozenset(shape.b)
 
     def comps_for(self, flow: Flow, kind: str) -> tuple[int, ...]:
         """Comparisons of ``kind`` ('watched' or 'dynamic') that read a moving fluent."""
@@ -129,13 +144,21 @@ class Dynamics:
         return found
 
     def next_change(
-        self, values: Values, flow: Flow, comps: Iterable[int], horizon: float = math.inf
+        self, values: Values, flow: Flow, comps: tuple[int, ...], horizon: float = math.inf
     ) -> float | None:
         """Earliest dt > 0 [s] at which one of ``comps`` may change truth value."""
+        rows, general = self._split(comps)
         best = horizon
         found = False
+        if rows is not None:
+            if flow.degree <= 2:
+                r = rows.first_root(values, flow, self.ct.n_fluents, best)
+                if r is not None:
+                    best, found = r, True
+            else:
+                general = tuple(rows.ids) + general
         items = self.ct.comps.items
-        for cid in comps:
+        for cid in general:
             poly = comparison_poly(items[cid], values, flow)
             if poly is None:  # not a polynomial: a documented fallback step
                 if self.config.fallback_step < best:
@@ -150,6 +173,19 @@ class Dynamics:
             return flow.valid_for
         return best if found else None
 
+    def _split(self, comps: tuple[int, ...]) -> tuple[LinearRows | None, tuple[int, ...]]:
+        """Comparisons on one fluent (solved together with numpy) and the others."""
+        found = self._split_cache.get(comps)
+        if found is None:
+            items = self.ct.comps.items
+            single = [c for c in comps if items[c].linear is not None
+                      and len(items[c].linear[0]) == 1]  # type: ignore[index]
+            rest = tuple(c for c in comps if c not in set(single))
+            found = (LinearRows.of(single, items) if single else None, rest)
+            if len(self._split_cache) < 100_000:
+                self._split_cache[comps] = found
+        return found
+
     # ------------------------------------------------------------------ events and time
     def settle(
         self, t: float, facts: int, values: Values, log: EventLog
@@ -162,15 +198,21 @@ class Dynamics:
         fired: set[int] = set()
         for _ in range(self.config.max_cascade):
             act, flow = self.flow(facts, values)
-            ahead = advance_values(values, flow, self.config.probe) if flow.moving else values
-            cands = [i for i in _candidates(facts, self._event_buckets, self._event_always)
-                     if not facts & events[i].forb]
-            triggered = [i for i in cands if events[i].pre(facts, values)]
-            if ahead is not values and any(
-                i not in triggered and events[i].pre(facts, ahead) for i in cands
-            ):
-                # an event on its boundary: the reference semantics decides
-                return self._reference_events(t, facts, values, log)
+            near = self.right.near_comps(values)
+            edge = {e for c in near for e in self.right.events_of.get(c, ())} if near else set()
+            changing = self._changing(act) if edge else frozenset()
+            triggered = []
+            for i in _candidates(facts, self._event_buckets, self._event_always):
+                ev = events[i]
+                if facts & ev.forb:
+                    continue
+                if ev.pre(facts, values) or (
+                    i in edge
+                    and self.right.event_reads[i] & changing
+                    and self.right.holds_after(self.ct.task.events[i].precondition, facts,
+                                               values, flow)
+                ):
+                    triggered.append(i)
             if any(i in fired for i in triggered):
                 raise ZenoError(f"an event is triggered twice at t={t:.6f}")
             if not triggered:
@@ -181,24 +223,6 @@ class Dynamics:
                 log.append((t, i))
                 self.counters["events"] += 1
         raise ZenoError(f"events keep firing at t={t:.6f}: the task has an event loop")
-
-    def _reference_events(
-        self, t: float, facts: int, values: Values, log: EventLog
-    ) -> tuple[int, Values, tuple[int, ...]]:
-        from artiplan.semantics import VAL_TOLERANCES, EventError, State, fire_events
-
-        self.counters["reference_events"] += 1
-        try:
-            state, fired, flow = fire_events(
-                self.ct.task, State(t, _fact_set(facts), values), VAL_TOLERANCES
-            )
-        except EventError as exc:
-            raise ZenoError(str(exc)) from exc
-        for e in fired:
-            log.append((t, self._event_index[id(e)]))
-            self.counters["events"] += 1
-        act = tuple(sorted(self._proc_index[id(p)] for p in flow.processes))
-        return sum(1 << f for f in state.facts), state.values, act
 
     def advance(
         self, t: float, facts: int, values: Values, until: float, log: EventLog,
@@ -295,15 +319,44 @@ class Dynamics:
 Buckets = dict[int, list[int]]
 
 
-def _fact_set(facts: int) -> frozenset[int]:
-    out = []
-    i = 0
-    while facts:
-        if facts & 1:
-            out.append(i)
-        facts >>= 1
-        i += 1
-    return frozenset(out)
+class LinearRows:
+    """Comparisons ``a * v_f + b op 0`` solved together: earliest root along a flow of degree
+    <= 2 (closed form, vectorised)."""
+
+    def __init__(self, ids: list[int], f: np.ndarray, a: np.ndarray, b: np.ndarray) -> None:
+        self.ids, self.f, self.a, self.b = ids, f, a, b
+
+    @classmethod
+    def of(cls, ids: list[int], items: list) -> LinearRows:
+        fs, as_, bs = [], [], []
+        for c in ids:
+            coeffs, const = items[c].linear
+            (f, a), = coeffs.items()
+            fs.append(f)
+            as_.append(a)
+            bs.append(const)
+        return cls(ids, np.array(fs, dtype=np.intp), np.array(as_), np.array(bs))
+
+    def first_root(self, values: Values, flow: Flow, n: int, horizon: float) -> float | None:
+        dense = flow.dense(n)
+        v = np.asarray(values)
+        p0 = self.a * v[self.f] + self.b
+        p1 = self.a * dense[0, self.f]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            if flow.degree <= 1:
+                roots = -p0 / p1
+            else:
+                p2 = self.a * dense[1, self.f]
+                disc = p1 * p1 - 4.0 * p2 * p0
+                touch = (disc < 0.0) & (disc > -1e-12 * np.maximum(1.0, p1 * p1))
+                disc = np.where(touch, 0.0, disc)
+                sq = np.sqrt(disc)
+                q = -0.5 * (p1 + np.copysign(sq, p1))
+                r1 = np.where(p2 != 0.0, q / p2, -p0 / p1)
+                r2 = np.where(p2 != 0.0, p0 / q, np.inf)
+                roots = np.concatenate((r1, r2))
+            ok = roots[(roots > DT_MIN) & (roots <= horizon)]
+        return float(ok.min()) if ok.size else None
 
 
 def _buckets(ops: list) -> tuple[list[tuple[int, list[int]]], list[int]]:

@@ -28,40 +28,58 @@ DT_MIN = 1e-10
 Poly = tuple[float, ...]  # c0 + c1 dt + c2 dt^2 ...
 
 
-@dataclass(frozen=True)
 class Flow:
     """Per moving fluent its derivative coefficients ``(c1, c2, ...)``.
 
     ``v_f(dt) = v_f + c1 dt + c2 dt^2 + ...`` for ``dt <= valid_for`` [s].
     """
 
-    coeffs: dict[int, Poly]
-    valid_for: float = math.inf
-    exact: bool = True
+    __slots__ = ("coeffs", "valid_for", "exact", "degree", "_dense")
+
+    def __init__(
+        self, coeffs: dict[int, Poly], valid_for: float = math.inf, exact: bool = True
+    ) -> None:
+        self.coeffs = coeffs
+        self.valid_for = valid_for
+        self.exact = exact
+        self.degree = max((len(c) for c in coeffs.values()), default=0)
+        self._dense: np.ndarray | None = None
 
     @property
     def moving(self) -> bool:
         return bool(self.coeffs)
 
+    def dense(self, n: int) -> np.ndarray:
+        """Coefficients as an array ``(degree, n)``: row k holds every fluent's ``c_{k+1}``."""
+        if self._dense is None:
+            arr = np.zeros((max(self.degree, 1), n))
+            for f, cs in self.coeffs.items():
+                arr[: len(cs), f] = cs
+            self._dense = arr
+        return self._dense
+
 
 STILL = Flow({})
 
 
-def compute_flow(
-    processes: list[CompiledProcess], active: tuple[int, ...], values: tuple[float, ...],
-    fallback_step: float,
-) -> Flow:
-    """The flow of the fluents while exactly the processes ``active`` run."""
-    if not active:
-        return STILL
+@dataclass(frozen=True)
+class FlowShape:
+    """What the active processes add up to, independent of the values: ``dv/dt = A v + b``."""
+
+    b: dict[int, float]
+    a_rows: dict[int, dict[int, float]]
+    raw: tuple[tuple[int, NumExpr], ...]  # rates that are not linear: frozen at their value
+
+
+def flow_shape(processes: list[CompiledProcess], active: tuple[int, ...]) -> FlowShape:
     b: dict[int, float] = {}
     a_rows: dict[int, dict[int, float]] = {}
-    exact = True
+    raw: list[tuple[int, NumExpr]] = []
     for pi in active:
-        for fluent, lin, raw in processes[pi].rates:
-            if lin is None:  # not linear in the fluents: freeze at the current value
-                exact = False
-                b[fluent] = b.get(fluent, 0.0) + _eval(raw, values)
+        for fluent, lin, expr in processes[pi].rates:
+            if lin is None:
+                raw.append((fluent, expr))
+                b.setdefault(fluent, 0.0)
                 continue
             coeffs, const = lin
             b[fluent] = b.get(fluent, 0.0) + const
@@ -69,7 +87,26 @@ def compute_flow(
                 row = a_rows.setdefault(fluent, {})
                 for j, a in coeffs.items():
                     row[j] = row.get(j, 0.0) + a
-    derivs = [{f: b[f] + sum(a * values[j] for j, a in a_rows.get(f, {}).items()) for f in b}]
+    return FlowShape(b, a_rows, tuple(raw))
+
+
+def compute_flow(
+    processes: list[CompiledProcess], active: tuple[int, ...], values: tuple[float, ...],
+    fallback_step: float, shape: FlowShape | None = None,
+) -> Flow:
+    """The flow of the fluents while exactly the processes ``active`` run."""
+    if not active:
+        return STILL
+    if shape is None:
+        shape = flow_shape(processes, active)
+    b, a_rows = shape.b, shape.a_rows
+    exact = not shape.raw
+    first = dict(b)
+    for fluent, expr in shape.raw:
+        first[fluent] += _eval(expr, values)
+    for f, row in a_rows.items():
+        first[f] += sum(a * values[j] for j, a in row.items())
+    derivs = [first]
     if a_rows:
         while any(derivs[-1].values()):
             if len(derivs) >= MAX_DEGREE:
@@ -80,12 +117,15 @@ def compute_flow(
                 {f: sum(a * prev.get(j, 0.0) for j, a in row.items()) for f, row in a_rows.items()}
             )
     coeffs_out: dict[int, Poly] = {}
-    for f in b:
-        cs = [derivs[k].get(f, 0.0) / math.factorial(k + 1) for k in range(len(derivs))]
-        while cs and cs[-1] == 0.0:
-            cs.pop()
-        if cs:
-            coeffs_out[f] = tuple(cs)
+    if len(derivs) == 1:
+        coeffs_out = {f: (c,) for f, c in first.items() if c != 0.0}
+    else:
+        for f in b:
+            cs = [derivs[k].get(f, 0.0) / math.factorial(k + 1) for k in range(len(derivs))]
+            while cs and cs[-1] == 0.0:
+                cs.pop()
+            if cs:
+                coeffs_out[f] = tuple(cs)
     return Flow(coeffs_out, math.inf if exact else fallback_step, exact)
 
 
