@@ -1,21 +1,18 @@
-"""Letting time pass exactly, and simulating a timed plan into a trajectory.
+"""Letting time pass exactly between happenings.
 
 :func:`advance` moves from one time point to another, stopping at every critical instant: where
 an event's precondition becomes true or a process's precondition changes (a process starts or
 stops). Critical instants are roots of polynomials (``dynamics``), not steps of a clock.
-
-:func:`simulate` runs a plan with the validator's rules but does not judge it: it applies every
-action it can find (preconditions unchecked) and records the :class:`Trajectory`.
+Simulating and validating whole plans: ``validator`` (``simulate``, ``validate``).
 """
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from artiplan.errors import InvalidPlanError
-from artiplan.pddl.task import GroundAction, Task
+from artiplan.pddl.task import Condition, GroundAction, Task
 from artiplan.semantics.cache import per_task
 from artiplan.semantics.dynamics import DEFAULT_FLOW, Flow, FlowConfig, crossing_time
 from artiplan.semantics.expressions import EXACT, Tolerances, condition_parts
@@ -52,14 +49,10 @@ class AdvanceResult:
     flow: Flow | None = None
 
 
-def _watched(task: Task) -> list[tuple[GroundAction | None, object, set[int]]]:
+def _watched(task: Task) -> list[tuple[Condition, set[int]]]:
     """Conditions whose change is critical: event and process preconditions, with fluents read."""
-    out: list[tuple[GroundAction | None, object, set[int]]] = []
-    for e in task.events:
-        out.append((e, e.precondition, condition_parts(e.precondition)[1]))
-    for p in task.processes:
-        out.append((None, p.precondition, condition_parts(p.precondition)[1]))
-    return out
+    conds = [e.precondition for e in task.events] + [p.precondition for p in task.processes]
+    return [(c, condition_parts(c)[1]) for c in conds]
 
 
 def next_critical_time(
@@ -67,10 +60,10 @@ def next_critical_time(
 ) -> float | None:
     """Earliest dt in (0, horizon] at which an event may fire or a process start or stop."""
     best: float | None = None
-    for _, cond, reads in per_task(task, "watched", lambda: _watched(task)):
+    for cond, reads in per_task(task, "watched", lambda: _watched(task)):
         if not reads & flow.changing:
             continue
-        dt = crossing_time(cond, flow, horizon if best is None else best, tol)  # type: ignore[arg-type]
+        dt = crossing_time(cond, flow, horizon if best is None else best, tol)
         if dt is not None and (best is None or dt < best):
             best = dt
     return best
@@ -133,17 +126,3 @@ def _record(
         result.events.append((state.time, e))
         if on_event is not None:
             on_event(state.time, e, state)
-
-
-def run_until_quiet(
-    task: Task, state: State, horizon: float, tol: Tolerances = EXACT
-) -> AdvanceResult:
-    """Advance until nothing changes any more or ``horizon`` [s] has passed (for predictions)."""
-    result = advance(task, state, state.time, tol)
-    if result.flow is not None and result.flow.is_static:
-        return result
-    return advance(task, result.state, state.time + horizon, tol)
-
-
-def is_finite_time(t: float) -> bool:
-    return math.isfinite(t) and t >= 0.0
