@@ -9,7 +9,7 @@ each departure is marked ``DEPARTURE`` below and explained in docs/encodings.md:
    ``<= -0.01`` and assigns 359.99. No event lands within VAL's comparison slack (1e-4) of
    another event's boundary, so wraps never bounce; angles live in [-0.01, 360). (Adding or
    subtracting 360 instead would keep a fixed-step planner's overshoot, but it made ENHSP's
-   heuristic solve 6 instead of 9 of 10 small NG problems: benchmarks/results/encoding.md.)
+   heuristic solve 5 instead of 9 of 10 small NG problems: benchmarks/results/encoding.md.)
 2. Processes have only continuous effects (VAL rejects Booleans in processes): "gravity acts on
    l" is derived from the state. ``(link-index ?l)`` is static; ``(held-index)`` is the index of
    the link being rotated (1 when the hands are free: L1 is always clamped). A link feels
