@@ -9,6 +9,7 @@ import pytest
 
 from artiplan.cli import main
 from artiplan.encoding import SIZES, make_task, write_suite
+from artiplan.model import ArticulatedObject, Configuration
 
 MODELS = ["ng", "ucm-0.1", "ucm-0.5", "ucm-1.0", "uacm-0.1", "uacm-0.5"]
 
@@ -106,6 +107,17 @@ def test_generate_command(tmp_path: Path) -> None:
     assert "(define (domain artiplan-uacm)" in (tmp_path / "g" / "domain.pddl").read_text()
     problem = (tmp_path / "g" / "p5.pddl").read_text()
     assert "(:objects L1 L2 L3 L4 L5 - link)" in problem
+    assert main(["generate", "--model", "ucm", "--reach-time", "2", "-o", str(tmp_path / "r")]) == 0
+    assert "(= (reach-time) 2)" in (tmp_path / "r" / "p4.pddl").read_text()
+    assert main(["generate", "--model", "ucm", "--speed-g", "-1", "-o", str(tmp_path)]) == 2
+    init, target = tmp_path / "i.json", tmp_path / "t.json"
+    obj = ArticulatedObject(3)
+    Configuration.hanging(3).save(init, obj)
+    Configuration.from_angles([0, 90, 90], [0, 90, 180]).save(target, obj)
+    args = ["generate", "--init", str(init), "--target", str(target), "--goal-style", "window"]
+    assert main([*args, "--name", "mine", "-o", str(tmp_path / "j")]) == 0
+    text = (tmp_path / "j" / "mine.pddl").read_text()
+    assert "(= (angle L3 z-axis) 0)" in text and "(>= (angle L3 z-axis) 175)" in text
     bad = tmp_path / "bad.json"
     bad.write_text("{not json")
     assert main(["generate", "--init", str(bad), "--target", str(bad), "-o", str(tmp_path)]) == 3

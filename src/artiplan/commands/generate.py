@@ -20,6 +20,12 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         "--acceleration", type=float, default=0.1, help="UACM gravity acceleration [deg/s^2]"
     )
     parser.add_argument("--speed", type=float, default=10.0, help="robot speed [deg/s]")
+    parser.add_argument(
+        "--reach-time",
+        type=float,
+        default=None,
+        help="seconds the arms need between a release and the next grasp (default: none)",
+    )
     parser.add_argument("--seed", type=int, default=0, help="seed of random configurations")
     parser.add_argument("--goal-style", choices=GOAL_STYLES, default="threshold")
     parser.add_argument("--init", type=Path, help="initial configuration (JSON)")
@@ -54,6 +60,7 @@ def run(args: argparse.Namespace) -> int:
             speed_d=args.speed,
             speed_g=args.speed_g,
             acceleration=args.acceleration,
+            reach_time=args.reach_time,
         )
     except ValueError as exc:
         raise UsageError(str(exc)) from None
