@@ -122,19 +122,3 @@ def test_generate_command(tmp_path: Path) -> None:
     bad.write_text("{not json")
     assert main(["generate", "--init", str(bad), "--target", str(bad), "-o", str(tmp_path)]) == 3
     assert main(["generate", "--init", str(bad), "-o", str(tmp_path)]) == 2
-
-
-def test_demo_command(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    out = tmp_path / "demo"
-    assert main(["demo", "-o", str(out)]) == 0
-    printed = capsys.readouterr().out
-    for rel in (
-        "initial.json",
-        "target.json",
-        "initial.png",
-        "ucm/domain.pddl",
-        "uacm/problem.pddl",
-    ):
-        assert (out / rel).is_file(), rel
-        assert rel.split("/")[-1] in printed
-    assert "(:domain artiplan-ng)" in (out / "ng" / "problem.pddl").read_text()
