@@ -79,6 +79,8 @@ def test_suite_json_describes_every_problem(suite_dir: Path) -> None:
         assert len(e["initial"]) == e["size"] == len(e["target"])
         # L1 is clamped: the target keeps it where it is.
         assert e["initial"][0] == e["target"][0]
+        text = (suite_dir / e["problem"]).read_text()
+        assert e["goal"] and all(cond in text for cond in e["goal"])
     uacm = next(e for e in entries if e["model"] == "uacm-0.5")
     assert uacm["parameters"]["acceleration"] == 0.5 and uacm["gravity_model"] == "uacm"
     task = make_task(uacm["size"], uacm["task"], 0)

@@ -16,6 +16,7 @@ from pathlib import Path
 from typing import Any
 
 from artiplan.encoding.domain import domain_pddl
+from artiplan.encoding.goals import make_goal
 from artiplan.encoding.options import EncodingOptions
 from artiplan.encoding.problem import problem_pddl
 from artiplan.model import ArticulatedObject, Configuration, random_configuration
@@ -119,9 +120,8 @@ def write_suite(outdir: str | Path, seed: int = 0, goal_style: str = "threshold"
         written.append(domain_path)
         for t in tasks:
             obj = ArticulatedObject(t.size)
-            text = problem_pddl(
-                obj, t.initial, t.target, options, goal_style, seed=t.seed, name=t.name
-            )
+            goal = make_goal(obj, t.target, goal_style, t.seed, planes=options.planes)
+            text = problem_pddl(obj, t.initial, t.target, options, goal=goal, name=t.name)
             path = folder / f"{t.name}.pddl"
             path.write_text(text)
             written.append(path)
@@ -137,6 +137,7 @@ def write_suite(outdir: str | Path, seed: int = 0, goal_style: str = "threshold"
                     "parameters": _parameters(options),
                     "initial": t.initial.to_dict()["links"],
                     "target": t.target.to_dict()["links"],
+                    "goal": [part for c in goal.conditions for part in c.pddl_parts()],
                 }
             )
     index = {
