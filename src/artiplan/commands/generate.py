@@ -43,7 +43,7 @@ def _load(path: Path) -> tuple[Configuration, ArticulatedObject]:
         return load_configuration(path)
     except FileNotFoundError:
         raise InputError(f"{path}: no such file") from None
-    except ValueError as exc:  # JSONDecodeError is a ValueError
+    except (ValueError, TypeError) as exc:  # JSONDecodeError is a ValueError
         raise InputError(f"{path}: {exc}") from None
 
 
