@@ -75,7 +75,7 @@ class Evaluation:
     """The value of a state and what the heuristic recommends."""
 
     h: float
-    preferred: tuple[int, ...]  # helpful action indices, ascending
+    preferred: tuple[int, ...]  # helpful action indices, widest reach first
     waits: tuple[int, ...]  # goal groups whose chosen process already runs
     actions_needed: bool  # some unsatisfied group needs a new action
     unsatisfied: int
@@ -165,6 +165,14 @@ class RateHeuristic:
         self.key_moves: dict[int, tuple[tuple[int, tuple[Linear, ...]], ...]] = {
             k: tuple((f, tuple(ls)) for f, ls in sorted(v.items())) for k, v in moves.items()
         }
+        # how many goal fluents the processes an action switches on move (its "reach"):
+        # among helpful actions, the one that moves most goals is tried first (base of a chain)
+        self.reach: list[int] = []
+        for a in self.ct.task.actions:
+            fluents: set[int] = set()
+            for fact in a.effect.add:
+                fluents.update(f for f, _ in self.key_moves.get(fact, ()))
+            self.reach.append(len(fluents))
 
     def _damage(
         self, p: int, fluent: int, seconds: float, values: tuple[float, ...],
@@ -316,7 +324,8 @@ class RateHeuristic:
                             if all(costs[0][q] == 0.0 for q in self.pre_lits[a]))
             needed = needed or needed_here
         h += len(plan)
-        return Evaluation(h, tuple(sorted(preferred)), tuple(waits), needed, unsat)
+        order = sorted(preferred, key=lambda a: (-self.reach[a], a))
+        return Evaluation(h, tuple(order), tuple(waits), needed, unsat)
 
     def _best_mover(
         self, g: GoalGroup, values: tuple[float, ...], active_set: set[int],
