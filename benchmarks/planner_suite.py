@@ -44,11 +44,16 @@ def run_one(domain: Path, prob: Path, limit: float) -> dict[str, object]:
     t1 = time.perf_counter()
     res = plan_task(task, time_limit=limit)
     plan_s = time.perf_counter() - t1
+    noop = False
+    if res.plan is not None and res.plan.actions:
+        eff = task.action_by_signature(res.plan.actions[-1].signature).effect
+        noop = not (eff.add or eff.delete or eff.numeric or eff.conditional)
     return {
         "problem": str(prob), "status": res.status.value, "plan_s": plan_s,
         "with_load_s": plan_s + load_s, "length": res.stats.get("plan_length"),
         "makespan": res.stats.get("makespan"), "expanded": res.stats.get("expanded"),
-        "message": res.message,
+        "message": res.message, "ends_with_noop": noop,
+        "plan": None if res.plan is None else [(a.time, a.signature) for a in res.plan.actions],
     }
 
 

@@ -137,11 +137,11 @@ class Search:
             if op[0] == "u":
                 g = self.h.groups[op[1]]
                 fn, comps = g.fn, g.comps
-            else:
+            else:  # the plan ends there: no margin needed
                 fn, comps = self.ct.goal, self.ct.goal_comps
+            margin = self.config.goal_margin if op[0] == "u" else 0.0
             res = dyn.wait_until(parent.time, parent.facts, parent.values, fn, comps, log,
-                                 parent.active, self.config.max_wait_steps,
-                                 self.config.goal_margin)
+                                 parent.active, self.config.max_wait_steps, margin)
         if res is None:
             return None
         t, facts, values, active = res
