@@ -116,3 +116,24 @@ def test_planner_on_a_tiny_task_ends_with_observe() -> None:
 def test_planner_proves_a_constant_goal_unsolvable() -> None:
     task = _task((LINEAR,), Comparison(">", V, Const(1.0)))  # nothing changes v
     assert plan_task(task).status is PlanStatus.UNSOLVABLE_PROVEN
+
+
+def test_non_polynomial_dynamics_use_a_counted_fallback() -> None:
+    growth = GroundProcess("grow", (), Atom(ON), (ContinuousEffect(0, X),))  # x' = x: e^t
+    task = _task((growth,), Comparison(">", X, Const(5.0)))
+    result = plan_task(task, time_limit=30, fallback_step=0.05)
+    assert result.status is PlanStatus.SOLVED, result.message
+    assert result.stats["fallback_steps"] > 0
+    assert result.plan is not None
+    assert result.plan.makespan == pytest.approx(math.log(5.0), abs=1e-3)
+
+
+def test_memory_limit_is_detected() -> None:
+    from artiplan.search.limits import LimitReached, Limits
+
+    limits = Limits(memory_limit=1.0, every=1)
+    ballast = [bytearray(1 << 20) for _ in range(64)]  # 64 MB more than at the start
+    with pytest.raises(LimitReached) as info:
+        limits.check()
+    assert info.value.kind == "memory"
+    del ballast
