@@ -1,59 +1,161 @@
-"""``artiplan demo [-o DIR]``: the foundation's demo on built-in defaults.
+"""``artiplan demo``: the paper's illustrative example, closed loop, on built-in defaults.
 
-A 4-link object, a seeded initial and target configuration, the three PDDL+ encodings with one
-problem each, the configurations as JSON, and pictures. (The closed loop replaces this later.)
+A 4-link object in the simulated world, a target from a fixed seed, the UCM model with
+``speed-g`` identified from the physics, ``window`` goals; plans with artiplan's planner,
+prints the plan as the paper's Fig. 6 does, executes it with the hands while monitoring the
+prediction, re-plans when needed. Writes to ``-o DIR`` (default ``demo-out/``): the run log and
+its JSON Schema, the plans, a plot of predicted vs perceived angles, snapshots at every action
+(``snapshots/`` and ``snapshots.png``), an animation from the overhead camera
+(``animation.gif``) and, under ``encodings/``, the three PDDL+ encodings of the example.
 """
 
 from __future__ import annotations
 
 import argparse
+import os
 import random
+import time
 from pathlib import Path
+from typing import Any
+
+from artiplan.errors import ExternalToolError, UsageError
 
 DEMO_LINKS = 4
 DEMO_SEED = 2
+#: The scripted human intervention of ``--intervene``: (time [s], link, plane, angle [deg]).
+INTERVENTION = (6.0, "L3", "z-axis", 25.0)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument(
-        "-o", "--out", type=Path, default=Path("demo-out"), help="output folder (demo-out)"
-    )
+    parser.add_argument("-o", "--out", type=Path, default=Path("demo-out"),
+                        help="output folder (default demo-out)")
+    parser.add_argument("--intervene", action="store_true",
+                        help=f"a human pushes {INTERVENTION[1]} by {INTERVENTION[3]:g} deg "
+                             f"at t = {INTERVENTION[0]:g} s")
+    parser.add_argument("--model", choices=("ng", "ucm", "uacm"), default="ucm")
+    parser.add_argument("--links", type=int, default=DEMO_LINKS, help="links (default 4)")
+    parser.add_argument("--hands", choices=("baxter", "virtual"), default="baxter",
+                        help="baxter (default; falls back to virtual hands if unavailable)")
+    parser.add_argument("--preset", choices=("stiff", "loose"), default="stiff")
     parser.add_argument("--seed", type=int, default=DEMO_SEED, help="configuration seed")
+    parser.add_argument("--goal", choices=("window", "threshold"), default="window",
+                        help="goal style (default window: goal links within 5 deg)")
+    parser.add_argument("--no-animation", action="store_true",
+                        help="skip camera frames (no OpenGL needed)")
 
 
 def run(args: argparse.Namespace) -> int:
-    from artiplan.encoding import EncodingOptions, domain_pddl, problem_pddl
-    from artiplan.encoding.suite import random_pair
-    from artiplan.model import ArticulatedObject
-    from artiplan.viz.draw import draw_configuration
-
+    if not 3 <= args.links <= 12:
+        raise UsageError("--links must be between 3 and 12")
+    os.environ.setdefault("MUJOCO_GL", "egl")  # before MuJoCo is imported
     out: Path = args.out
     out.mkdir(parents=True, exist_ok=True)
-    obj = ArticulatedObject(DEMO_LINKS)
+    from artiplan.encoding.suite import random_pair
+    from artiplan.model import ArticulatedObject
+
+    obj = ArticulatedObject(args.links)
     init, target = random_pair(obj.n_links, random.Random(args.seed))
-    written = [out / "initial.json", out / "target.json"]
+    written = _write_encodings(out / "encodings", obj, init, target, args.seed)
+    world, hands_note = _make_world(obj, init, args)
+    config, calib_note = _loop_config(obj, world, args)
+    print(f"artiplan demo: {obj.n_links}-link object, seed {args.seed}, model "
+          f"{args.model.upper()}, preset {args.preset}, hands {world.hands.kind}")
+    for note in (hands_note, calib_note):
+        if note:
+            print(note)
+    written += _execute(out, world, target, config, args, hands_note)
+    for path in written:
+        print(f"  wrote {path}")
+    return 0
+
+
+def _write_encodings(folder: Path, obj: Any, init: Any, target: Any, seed: int) -> list[Path]:
+    """The foundation's demo output: three encodings, one problem each, and drawings."""
+    from artiplan.encoding import EncodingOptions, domain_pddl, problem_pddl
+    from artiplan.viz.draw import draw_configuration
+
+    folder.mkdir(parents=True, exist_ok=True)
+    written = [folder / "initial.json", folder / "target.json"]
     init.save(written[0], obj)
     target.save(written[1], obj)
     for model in ("ng", "ucm", "uacm"):
         options = EncodingOptions(model, speed_g=0.5, acceleration=0.5)
-        folder = out / model
-        folder.mkdir(exist_ok=True)
-        (folder / "domain.pddl").write_text(domain_pddl(obj, options))
-        problem = problem_pddl(obj, init, target, options, seed=args.seed, name="demo")
-        (folder / "problem.pddl").write_text(problem)
-        written += [folder / "domain.pddl", folder / "problem.pddl"]
-    written.append(
-        draw_configuration(
-            obj,
-            init,
-            out / "initial.png",
-            target=target,
-            title="demo: initial (solid) and target (ghost)",
-        )
-    )
-    written.append(draw_configuration(obj, target, out / "target.png", title="demo: target"))
-    print(f"artiplan demo: a {obj.n_links}-link object, seed {args.seed}")
-    for path in written:
-        print(f"  wrote {path}")
-    print("next: plan one of the problems, e.g. with ENHSP or `artiplan plan` when available")
-    return 0
+        sub = folder / model
+        sub.mkdir(exist_ok=True)
+        (sub / "domain.pddl").write_text(domain_pddl(obj, options))
+        (sub / "problem.pddl").write_text(
+            problem_pddl(obj, init, target, options, seed=seed, name="demo"))
+        written += [sub / "domain.pddl", sub / "problem.pddl"]
+    written.append(draw_configuration(obj, init, folder / "initial.png", target=target,
+                                      title="demo: initial (solid) and target (ghost)"))
+    written.append(draw_configuration(obj, target, folder / "target.png", title="demo: target"))
+    return written
+
+
+def _make_world(obj: Any, init: Any, args: argparse.Namespace) -> tuple[Any, str]:
+    from artiplan.world import make_world
+
+    if args.hands == "baxter":
+        try:
+            return make_world(obj, init, preset=args.preset, hands="baxter", seed=args.seed), ""
+        except (ImportError, ValueError, RuntimeError) as exc:
+            note = ("!!! WARNING: Baxter arms are not available in this build "
+                    f"({type(exc).__name__}: {exc}); running with VIRTUAL hands instead. !!!")
+            return make_world(obj, init, preset=args.preset, hands="virtual",
+                              seed=args.seed), note
+    return make_world(obj, init, preset=args.preset, hands="virtual", seed=args.seed), ""
+
+
+def _loop_config(obj: Any, world: Any, args: argparse.Namespace) -> tuple[Any, str]:
+    from artiplan.encoding import EncodingOptions
+    from artiplan.execution import Intervention, LoopConfig
+    from artiplan.execution.calibrate import calibrate, measure_reach_time
+    from artiplan.world import make_world
+
+    calib = calibrate(make_world, obj, preset=args.preset)
+    reach = measure_reach_time(world)
+    enc = EncodingOptions(args.model, speed_g=round(calib.speed_g, 3),
+                          acceleration=round(calib.acceleration, 3), reach_time=reach)
+    interventions = (Intervention(*INTERVENTION),) if args.intervene else ()
+    config = LoopConfig(encoding=enc, goal_style=args.goal, interventions=interventions)
+    note = (f"calibrated from a release run: speed-g {enc.speed_g:g} deg/s (UCM), "
+            f"acceleration {enc.acceleration:g} deg/s^2 (UACM); reach time "
+            + (f"{reach:.2f} s" if reach is not None else "none (instant grasps)"))
+    return config, note
+
+
+def _execute(out: Path, world: Any, target: Any, config: Any, args: argparse.Namespace,
+             hands_note: str) -> list[Path]:
+    from artiplan.execution import ClosedLoop
+    from artiplan.execution.runlog import write_schema
+    from artiplan.viz.execution import FrameRecorder, contact_sheet, plot_run
+
+    recorder = None
+    if not args.no_animation:
+        try:
+            recorder = FrameRecorder(world, every=2)
+        except Exception as exc:  # GL context failures surface as various exception types
+            raise ExternalToolError(f"headless rendering failed ({exc}); try MUJOCO_GL=osmesa "
+                                    "or --no-animation") from exc
+    t0 = time.perf_counter()
+    loop = ClosedLoop(world, target, config, progress=print, seed=args.seed,
+                      observer=recorder.observe if recorder else None)
+    log = loop.run()
+    log.settings["note"] = hands_note
+    print(f"done in {time.perf_counter() - t0:.1f} s wall, {world.time:.1f} s simulated: goal "
+          f"{'REACHED' if log.success else 'NOT reached'}, {len(log.replans)} re-plan(s), "
+          f"max goal-link error {log.final.get('max_goal_error', float('nan')):.1f} deg")
+    written = [log.save(out / "run-log.json"), write_schema(out / "run-log.schema.json")]
+    for p in log.plans:
+        path = out / f"plan-{p['index']}.txt"
+        path.write_text(f"; {p['reason']} (t = {p['start_time']} s)\n{p['text']}")
+        written.append(path)
+    written.append(plot_run(log.to_dict(), out / "angles.png"))
+    if recorder is not None:
+        shots = recorder.write_snapshots(out / "snapshots")
+        written += shots
+        if shots:
+            written.append(contact_sheet(shots, out / "snapshots.png"))
+        written.append(recorder.write_gif(out / "animation.gif"))
+        recorder.close()
+    return written

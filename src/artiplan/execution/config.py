@@ -11,12 +11,17 @@ from artiplan.model import PLANES
 @dataclass(frozen=True)
 class Intervention:
     """A scripted human intervention: at ``time`` [s, simulated] turn ``link`` by ``delta_deg``
-    [deg] on ``plane`` (the links tip-ward are carried), as :meth:`World.push` does."""
+    [deg] on ``plane`` (the links tip-ward are carried), as :meth:`World.push` does.
+
+    With ``fraction`` set, ``time`` is ignored and the push happens at that fraction of the
+    first plan's makespan (so it always falls inside the execution).
+    """
 
     time: float
     link: str
     plane: str
     delta_deg: float
+    fraction: float | None = None
 
     def __post_init__(self) -> None:
         if self.plane not in PLANES:
@@ -49,6 +54,13 @@ class LoopConfig:
         settle_s: Simulated time the world runs before the first percept [s].
         interventions: Scripted pushes.
         max_time: Simulated-time budget of the whole run [s].
+        fallback_model: After a plan ends without the goal, plan with this model from then on
+            (None: keep the model). A short active approach (NG) does not rely on a gravity
+            prediction the physics has just contradicted (plans that wait for gravity to bring
+            a link into its window are the brittle ones).
+        monitor_tip_links: Also monitor links tip-ward of every goal link. They cannot move a
+            goal link in the model, and the model mispredicts carried links, so by default
+            their errors are logged but do not trigger re-plans.
     """
 
     encoding: EncodingOptions = field(default_factory=lambda: EncodingOptions("ucm", speed_g=0.5))
@@ -65,6 +77,8 @@ class LoopConfig:
     settle_s: float = 0.0
     interventions: tuple[Intervention, ...] = ()
     max_time: float = 600.0
+    fallback_model: str | None = "ng"
+    monitor_tip_links: bool = False
 
     def __post_init__(self) -> None:
         if self.threshold_deg <= 0 or self.accept_deg <= 0 or self.plan_tolerance_deg <= 0:

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from dataclasses import asdict
+from dataclasses import asdict, replace
 from typing import TYPE_CHECKING, Any
 
 from artiplan.encoding import domain_pddl, make_goal
@@ -29,6 +29,9 @@ if TYPE_CHECKING:
     from artiplan.world import World
 
 Progress = Callable[[str], None]
+#: Called with (world, kind, label) after every percept (kind ``monitor``), action (``action``,
+#: its signature), intervention and the final check; e.g. to record camera frames.
+Observer = Callable[["World", str, str], None]
 _EPS = 1e-6
 
 
@@ -36,16 +39,19 @@ class ClosedLoop:
     """One run of the loop on ``world`` toward ``target``; call :meth:`run`."""
 
     def __init__(self, world: World, target: Configuration, config: LoopConfig,
-                 progress: Progress | None = None, seed: int = 0) -> None:
+                 progress: Progress | None = None, seed: int = 0,
+                 observer: Observer | None = None) -> None:
         self.world, self.obj, self.target, self.config = world, world.obj, target, config
         self.progress = progress or (lambda _line: None)
+        self.observer = observer or (lambda _w, _k, _l: None)
         enc = config.encoding
         # Goals on canonical covers, like the problems (see execution.problem.canonical).
         self.goal = make_goal(self.obj, canonical(target), config.goal_style, seed,
                               planes=enc.planes, tolerance=config.plan_tolerance_deg)
         self.domain = domain_pddl(self.obj, enc)
         self.monitor = Monitor(self.obj, config.threshold_deg, self.goal.links,
-                               config.other_threshold_deg)
+                               config.other_threshold_deg, config.monitor_tip_links)
+        self.encoding = enc
         self.pending = sorted(config.interventions, key=lambda i: i.time)
         self.replans = 0
         self.log = RunLog(
@@ -72,6 +78,7 @@ class ClosedLoop:
                 if self._final_check() or not self._may_replan():
                     break
                 reason = "goal not reached at the final happening"
+                self._fall_back()
             else:
                 reason = outcome
             self.world.stop(release=True)
@@ -82,6 +89,14 @@ class ClosedLoop:
         self.log.wall_s = round(time.perf_counter() - wall0, 4)
         return self.log
 
+    def _fall_back(self) -> None:
+        """Switch to the fallback model (see ``LoopConfig.fallback_model``)."""
+        model = self.config.fallback_model
+        if model is not None and model != self.encoding.model:
+            self.encoding = replace(self.encoding, model=model)
+            self.domain = domain_pddl(self.obj, self.encoding)
+            self.progress(f"falling back to the {model.upper()} model for the next plans")
+
     def _may_replan(self) -> bool:
         return self.config.replan and self.replans < self.config.max_replans \
             and self.world.time < self.config.max_time
@@ -90,7 +105,7 @@ class ClosedLoop:
     def _plan(self, reason: str) -> Prediction | None:
         """Perceive, build the problem, plan; log it. None when no plan was found."""
         start = canonical(self.world.perceive().configuration)
-        problem = build_problem(self.obj, start, self.target, self.config.encoding, self.goal)
+        problem = build_problem(self.obj, start, self.target, self.encoding, self.goal)
         t = time.perf_counter()
         result = plan(self.domain, problem, time_limit=self.config.plan_time_limit)
         latency = time.perf_counter() - t
@@ -104,6 +119,7 @@ class ClosedLoop:
         solved = result.status is PlanStatus.SOLVED and result.plan is not None
         record: dict[str, Any] = {
             "index": index, "start_time": round(t0, 4), "reason": reason,
+            "model": self.encoding.model,
             "status": result.status.value, "latency_wall_s": round(latency, 4),
             "makespan": result.stats.get("makespan"), "start": conf_dict(start),
             "message": result.message,
@@ -116,7 +132,14 @@ class ClosedLoop:
                       f"{len(record['actions'])} actions")
         if not solved or result.plan is None:
             return None
+        for line in record["text"].splitlines():
+            self.progress(f"    {line}")
         self.current_plan: Plan = result.plan
+        if index == 0:  # interventions given as a fraction of the first plan's makespan
+            span = max(result.plan.makespan, result.plan.end or 0.0)
+            self.pending = sorted(
+                (replace(iv, time=t0 + iv.fraction * span) if iv.fraction is not None else iv
+                 for iv in self.pending), key=lambda i: i.time)
         return Prediction(self.obj, result.trajectory, t0, start)
 
     # -- execution ------------------------------------------------------------------------
@@ -165,13 +188,14 @@ class ClosedLoop:
             "time": round(now, 4), "plan": index, "kind": kind, "predicted": conf_dict(predicted),
             "perceived": conf_dict(percept.configuration),
             "errors": [round(e, 3) for e in verdict.errors]})
+        self.observer(self.world, "monitor", kind)
         if not verdict.fired:
             return None
         return (f"{verdict.worst_link} off the prediction by {verdict.worst_error:.1f} deg "
                 f"(threshold {verdict.threshold:g})")
 
     def _dispatch(self, action: Any, pred: Prediction, index: int) -> str | None:
-        enc = self.config.encoding
+        enc = self.encoding
         now = self.world.time
         try:
             did, ok = dispatch(self.world, action, (enc.speed_i, enc.speed_d), pred.at(now)), True
@@ -180,6 +204,7 @@ class ClosedLoop:
         self.log.happenings.append({"time": round(now, 4), "plan": index,
                                     "action": action.signature, "ok": ok, "did": did})
         self.progress(f"t={now:7.2f} s  {action.signature}: {did}")
+        self.observer(self.world, "action", action.signature)
         return None if ok else f"action failed: {did}"
 
     def _intervene(self, iv: Intervention, index: int) -> None:
@@ -188,6 +213,7 @@ class ClosedLoop:
                                        "plane": iv.plane, "delta_deg": iv.delta_deg})
         self.progress(f"t={self.world.time:7.2f} s  human pushes {iv.link} by "
                       f"{iv.delta_deg:+g} deg on {iv.plane}")
+        self.observer(self.world, "intervention", f"push {iv.link} {iv.delta_deg:+g} deg")
 
     def _final_check(self) -> bool:
         """Hold still, perceive, judge the goal (every goal link within ``accept_deg``)."""
@@ -203,6 +229,7 @@ class ClosedLoop:
         self.log.success = ok
         self.progress(f"t={self.world.time:7.2f} s  goal {'reached' if ok else 'NOT reached'}: "
                       + ", ".join(f"{k} {v:.1f} deg" for k, v in errs.items()))
+        self.observer(self.world, "final", "goal reached" if ok else "goal not reached")
         return ok
 
 
@@ -213,6 +240,7 @@ def _settings(config: LoopConfig) -> dict[str, Any]:
 
 
 def run_loop(world: World, target: Configuration, config: LoopConfig | None = None,
-             progress: Progress | None = None, seed: int = 0) -> RunLog:
+             progress: Progress | None = None, seed: int = 0,
+             observer: Observer | None = None) -> RunLog:
     """Run the closed loop once; see :class:`ClosedLoop`."""
-    return ClosedLoop(world, target, config or LoopConfig(), progress, seed).run()
+    return ClosedLoop(world, target, config or LoopConfig(), progress, seed, observer).run()

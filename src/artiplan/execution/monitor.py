@@ -32,22 +32,26 @@ class Monitor:
     """Fires when any link's direction error passes its threshold [deg].
 
     Goal links (and, without ``goal_links``, every link) use ``threshold_deg``; the other
-    links ``other_threshold_deg`` (default: the same). A wider threshold off the goal tolerates
-    the PDDL+ model's known geometric gap on carried links (it adds a rotation's angle to every
-    carried link's angle) while still catching a human moving any link.
+    links ``other_threshold_deg`` (default: the same); without ``tip_links`` the links tip-ward
+    of every goal link are not monitored (infinite threshold). A wider threshold off the goal
+    tolerates the PDDL+ model's known geometric gap on carried links (it adds a rotation's angle
+    to every carried link's angle) while still catching a human moving a link that matters.
     L1 is clamped and not monitored. Noise below the threshold never fires it: the decision is
     a plain comparison of the perceived and predicted link directions.
     """
 
     def __init__(self, obj: ArticulatedObject, threshold_deg: float,
                  goal_links: tuple[str, ...] = (),
-                 other_threshold_deg: float | None = None) -> None:
+                 other_threshold_deg: float | None = None, tip_links: bool = True) -> None:
         if threshold_deg <= 0 or (other_threshold_deg is not None and other_threshold_deg <= 0):
             raise ValueError("thresholds must be positive")
         self.obj, self.threshold_deg = obj, threshold_deg
         other = threshold_deg if other_threshold_deg is None else other_threshold_deg
+        last_goal = max((obj.index(lk) for lk in goal_links), default=obj.n_links)
         self.thresholds = tuple(
-            threshold_deg if not goal_links or lk in goal_links else other for lk in obj.links
+            threshold_deg if not goal_links or lk in goal_links
+            else other if tip_links or obj.index(lk) < last_goal else float("inf")
+            for lk in obj.links
         )
 
     def check(self, predicted: Configuration, perceived: Configuration) -> Verdict:

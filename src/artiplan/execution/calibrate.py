@@ -1,0 +1,96 @@
+"""Identify the gravity models' parameters from the physics, and the robot's reach time.
+
+A release run: the object hangs straight down except the tip link, held horizontal and then
+released; its gamma is recorded for ``window_s`` seconds. UCM's ``speed-g`` is the least-
+squares slope of the fall (deg/s), UACM's ``acceleration`` the least-squares fit of
+``gamma0 - gamma = a t^2 / 2`` (deg/s^2). The fit window matters: a stiff (overdamped) joint
+falls at a nearly constant speed, a loose one accelerates and then swings.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from artiplan.model import ArticulatedObject, Configuration
+
+if TYPE_CHECKING:
+    from artiplan.world import World
+
+
+@dataclass(frozen=True)
+class Calibration:
+    """Gravity parameters identified from a release run.
+
+    Attributes:
+        speed_g: UCM angular speed [deg/s].
+        acceleration: UACM angular acceleration [deg/s^2].
+        window_s: Length of the fitted fall [s].
+        start_gamma: Gamma the link was released from [deg].
+        times: Sample times [s] of the fall; ``gammas`` the tip link's gamma then [deg].
+    """
+
+    speed_g: float
+    acceleration: float
+    window_s: float
+    start_gamma: float
+    times: tuple[float, ...] = ()
+    gammas: tuple[float, ...] = ()
+
+
+def release_configuration(n_links: int, start_gamma: float = 90.0) -> Configuration:
+    """Every link hanging (gamma 0) except the tip link at ``start_gamma`` [deg]."""
+    gamma = (0.0,) * (n_links - 1) + (start_gamma,)
+    return Configuration((0.0,) * n_links, gamma)
+
+
+def fit_fall(times: np.ndarray, gammas: np.ndarray) -> tuple[float, float]:
+    """(speed_g [deg/s], acceleration [deg/s^2]) of a fall ``gammas`` [deg] at ``times`` [s]."""
+    t = times - times[0]
+    drop = gammas[0] - gammas
+    speed = float(np.dot(t, drop) / max(np.dot(t, t), 1e-12))
+    half_t2 = 0.5 * t**2
+    acc = float(np.dot(half_t2, drop) / max(np.dot(half_t2, half_t2), 1e-12))
+    # A link that does not fall would give 0: the encodings need positive parameters.
+    return max(speed, 1e-3), max(acc, 1e-3)
+
+
+def calibrate(make: type[World] | object, obj: ArticulatedObject, *, preset: str = "stiff",
+              window_s: float = 5.0, start_gamma: float = 90.0, dt: float = 0.01) -> Calibration:
+    """Release the tip link from ``start_gamma`` in a fresh world and fit both models over
+    ``window_s`` [s] or until the link is within 10% of rest, whichever comes first.
+
+    ``make`` is a ``make_world``-like factory ``(obj, conf, preset=..., hands="virtual")``.
+    """
+    world = make(obj, release_configuration(obj.n_links, start_gamma),  # type: ignore[operator]
+                 preset=preset, hands="virtual")
+    times, gammas = [0.0], [start_gamma]
+    t0 = world.time
+    while world.time - t0 < window_s - 1e-9:
+        world.run_until(world.time + dt)
+        conf = world.true_configuration()
+        times.append(world.time - t0)
+        gammas.append(min(conf.gamma[-1], 360.0 - conf.gamma[-1]))
+    t_arr, g_arr = np.array(times), np.array(gammas)
+    # Fit the fall itself: up to where the link first gets near rest (a loose joint swings
+    # about 0 afterwards, which neither model describes).
+    low = np.nonzero(g_arr < 0.1 * start_gamma)[0]
+    if low.size:
+        t_arr, g_arr = t_arr[: low[0] + 1], g_arr[: low[0] + 1]
+    speed, acc = fit_fall(t_arr, g_arr)
+    return Calibration(speed, acc, window_s, start_gamma, tuple(times), tuple(gammas))
+
+
+def measure_reach_time(world: World) -> float | None:
+    """Seconds the world's hands need between a release and the next grasp, if they say.
+
+    Hands that move arms (Baxter) expose ``reach_time(world) -> float``; virtual hands grasp
+    at once and have none (None: the encodings keep the paper's instantaneous grasps).
+    """
+    measure = getattr(world.hands, "reach_time", None)
+    if measure is None:
+        return None
+    value = measure(world) if callable(measure) else measure
+    return float(value) if value is not None else None
