@@ -9,6 +9,7 @@ falls at a nearly constant speed, a loose one accelerates and then swings.
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
@@ -57,15 +58,15 @@ def fit_fall(times: np.ndarray, gammas: np.ndarray) -> tuple[float, float]:
     return max(speed, 1e-3), max(acc, 1e-3)
 
 
-def calibrate(make: type[World] | object, obj: ArticulatedObject, *, preset: str = "stiff",
+def calibrate(make: Callable[..., World], obj: ArticulatedObject, *, preset: str = "stiff",
               window_s: float = 5.0, start_gamma: float = 90.0, dt: float = 0.01) -> Calibration:
     """Release the tip link from ``start_gamma`` in a fresh world and fit both models over
     ``window_s`` [s] or until the link is within 10% of rest, whichever comes first.
 
     ``make`` is a ``make_world``-like factory ``(obj, conf, preset=..., hands="virtual")``.
     """
-    world = make(obj, release_configuration(obj.n_links, start_gamma),  # type: ignore[operator]
-                 preset=preset, hands="virtual")
+    world = make(obj, release_configuration(obj.n_links, start_gamma), preset=preset,
+                 hands="virtual")
     times, gammas = [0.0], [start_gamma]
     t0 = world.time
     while world.time - t0 < window_s - 1e-9:

@@ -11,9 +11,10 @@ from __future__ import annotations
 import time
 from collections.abc import Callable
 from dataclasses import asdict, replace
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING, Any, cast
 
 from artiplan.encoding import domain_pddl, make_goal
+from artiplan.encoding.options import Model
 from artiplan.execution.config import Intervention, LoopConfig
 from artiplan.execution.dispatch import ActionFailed, dispatch
 from artiplan.execution.monitor import Monitor, goal_errors
@@ -93,7 +94,7 @@ class ClosedLoop:
         """Switch to the fallback model (see ``LoopConfig.fallback_model``)."""
         model = self.config.fallback_model
         if model is not None and model != self.encoding.model:
-            self.encoding = replace(self.encoding, model=model)
+            self.encoding = replace(self.encoding, model=cast(Model, model))
             self.domain = domain_pddl(self.obj, self.encoding)
             self.progress(f"falling back to the {model.upper()} model for the next plans")
 
