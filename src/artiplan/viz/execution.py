@@ -184,3 +184,40 @@ def contact_sheet(snapshots: list[Path], path: str | Path, columns: int = 2) -> 
     out = Path(path)
     iio.imwrite(out, sheet)
     return out
+
+
+def plot_fidelity(table: list[dict[str, Any]], folder: str | Path) -> list[Path]:
+    """Bar charts of the fidelity summary: open-loop prediction errors (RMS and at the end) per
+    model and parameters, and goal/success rates open-loop vs re-planning, per preset and size.
+    """
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    out = Path(folder)
+    groups = sorted({(r["preset"], r["size"]) for r in table})
+    paths = []
+    for name, series, ylabel in (
+        ("fidelity-errors.png", (("rms_deg", "RMS"), ("end_deg", "at the end")),
+         "direction error vs prediction [deg]"),
+        ("fidelity-success.png", (("open_goal_pct", "open loop"),
+                                  ("closed_success_pct", "re-planning")), "goal reached [%]"),
+    ):
+        fig, axes = plt.subplots(1, len(groups), figsize=(5 * len(groups), 4), squeeze=False)
+        for ax, (preset, size) in zip(axes[0], groups, strict=True):
+            rows = [r for r in table if r["preset"] == preset and r["size"] == size]
+            labels = [f"{r['model'].upper()}\n{r['calibration']}" for r in rows]
+            x = np.arange(len(rows))
+            for k, (key, lab) in enumerate(series):
+                vals = [r[key] if r[key] is not None else 0.0 for r in rows]
+                ax.bar(x + (k - 0.5) * 0.38, vals, 0.38, label=lab)
+            ax.set_xticks(x, labels, fontsize=8)
+            ax.set_title(f"{size} links, {preset}")
+            ax.set_ylabel(ylabel)
+            ax.legend(fontsize=8)
+        fig.tight_layout()
+        fig.savefig(out / name, dpi=100)
+        plt.close(fig)
+        paths.append(out / name)
+    return paths
