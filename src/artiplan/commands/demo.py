@@ -21,7 +21,7 @@ from typing import Any
 from artiplan.errors import ExternalToolError, UsageError
 
 DEMO_LINKS = 4
-DEMO_SEED = 2
+DEMO_SEED = 1
 #: The scripted human intervention of ``--intervene``: (time [s], link, plane, angle [deg]).
 INTERVENTION = (6.0, "L3", "z-axis", 25.0)
 

@@ -105,11 +105,13 @@ class FrameRecorder:
         # where a 15 cm link is a few pixels): "overhead" looks straight down on the base.
         reach = world.obj.n_links * world.obj.link_length
         self.cameras: dict[str, Any] = {}
-        for name, azimuth, elevation in (("overhead", 90.0, -89.9), ("perspective", 135.0, -25.0)):
+        centre = 0.5 * (np.asarray(world.base_position) + world.link_centres().mean(axis=0))
+        for name, azimuth, elevation, dist in (("overhead", 90.0, -89.9, 2.2),
+                                               ("perspective", 135.0, -25.0, 2.6)):
             cam = mujoco.MjvCamera()
             cam.type = mujoco.mjtCamera.mjCAMERA_FREE
-            cam.lookat[:] = np.asarray(world.base_position) - np.array([0.0, 0.0, 0.3 * reach])
-            cam.distance, cam.azimuth, cam.elevation = 3.2 * reach, azimuth, elevation
+            cam.lookat[:] = centre
+            cam.distance, cam.azimuth, cam.elevation = dist * reach, azimuth, elevation
             self.cameras[name] = cam
 
     def _image(self, world: World, camera: str) -> np.ndarray:
