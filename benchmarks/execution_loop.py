@@ -25,6 +25,7 @@ def main() -> None:
     ap.add_argument("--plan-tol", type=float, default=2.5)
     ap.add_argument("--seed", type=int, default=7, help="suite seed of the tasks")
     ap.add_argument("--advance-latency", action="store_true")
+    ap.add_argument("--reach-time", type=float, default=None)
     ap.add_argument("-o", "--out", type=Path, required=True)
     args = ap.parse_args()
 
@@ -38,7 +39,7 @@ def main() -> None:
     obj = ArticulatedObject(args.links)
     cal = calibrate(make_world, obj, preset=args.preset)
     enc = EncodingOptions(args.model, speed_g=round(cal.speed_g, 3),
-                          acceleration=round(cal.acceleration, 3))
+                          acceleration=round(cal.acceleration, 3), reach_time=args.reach_time)
     ivs = (Intervention(0.0, "L3", "z-axis", 20.0, fraction=0.4),) if args.intervene else ()
     config = LoopConfig(encoding=enc, interventions=ivs, plan_tolerance_deg=args.plan_tol,
                         advance_latency=args.advance_latency)

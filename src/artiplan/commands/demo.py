@@ -40,6 +40,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--seed", type=int, default=DEMO_SEED, help="configuration seed")
     parser.add_argument("--goal", choices=("window", "threshold"), default="window",
                         help="goal style (default window: goal links within 5 deg)")
+    parser.add_argument("--reach-time", type=float, default=None,
+                        help="seconds between a release and the next grasp, modelled in PDDL+ "
+                             "(default: measured from the hands; virtual hands: none)")
     parser.add_argument("--no-animation", action="store_true",
                         help="skip camera frames (no OpenGL needed)")
 
@@ -47,6 +50,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
 def run(args: argparse.Namespace) -> int:
     if not 3 <= args.links <= 12:
         raise UsageError("--links must be between 3 and 12")
+    if args.reach_time is not None and args.reach_time < 0:
+        raise UsageError("--reach-time must be >= 0")
     os.environ.setdefault("MUJOCO_GL", "egl")  # before MuJoCo is imported
     out: Path = args.out
     out.mkdir(parents=True, exist_ok=True)
@@ -113,7 +118,7 @@ def _loop_config(obj: Any, world: Any, args: argparse.Namespace) -> tuple[Any, s
     from artiplan.world import make_world
 
     calib = calibrate(make_world, obj, preset=args.preset)
-    reach = measure_reach_time(world)
+    reach = args.reach_time if args.reach_time is not None else measure_reach_time(world)
     enc = EncodingOptions(args.model, speed_g=round(calib.speed_g, 3),
                           acceleration=round(calib.acceleration, 3), reach_time=reach)
     interventions = (Intervention(*INTERVENTION),) if args.intervene else ()

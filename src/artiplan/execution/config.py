@@ -58,6 +58,8 @@ class LoopConfig:
             (None: keep the model). A short active approach (NG) does not rely on a gravity
             prediction the physics has just contradicted (plans that wait for gravity to bring
             a link into its window are the brittle ones).
+        fallback_after: Also switch to the fallback model from this many re-plans on, whatever
+            their reasons (a model the physics keeps contradicting is not worth re-using).
         monitor_tip_links: Also monitor links tip-ward of every goal link. They cannot move a
             goal link in the model, and the model mispredicts carried links, so by default
             their errors are logged but do not trigger re-plans.
@@ -78,6 +80,7 @@ class LoopConfig:
     interventions: tuple[Intervention, ...] = ()
     max_time: float = 600.0
     fallback_model: str | None = "ng"
+    fallback_after: int = 2
     monitor_tip_links: bool = False
 
     def __post_init__(self) -> None:

@@ -84,6 +84,8 @@ class ClosedLoop:
                 reason = outcome
             self.world.stop(release=True)
             self.replans += 1
+            if self.replans >= self.config.fallback_after:
+                self._fall_back()
         if not self.log.final:
             self._final_check()
         self.world.stop(release=True)
