@@ -128,11 +128,16 @@ def plan_task(
     return result
 
 
+#: Restarts (time weight, expansion budget per goal conjunct): greedy search is fast when its
+#: heuristic fits and lost when it does not; another weighting often fits. Budgets count
+#: expansions, not seconds, so a run is the same on any machine. The last one is unbounded.
+SCHEDULE = ((None, 20), (0.3, 40), (1.0, 80), (0.03, 160), (None, None))
+
+
 def _plan(task: Task, limits: Limits, stats: dict[str, Any], options: dict[str, Any]) -> PlanResult:
     t = time.perf_counter()
     ct = compile_task(task)
     dyn = Dynamics(ct, DynamicsConfig(fallback_step=float(options.get("fallback_step", 0.1))))
-    heur = RateHeuristic(ct, HeuristicConfig(time_weight=float(options.get("time_weight", 0.1))))
     stats["compile_s"] = time.perf_counter() - t
     reason = prove_unsolvable(task)
     if reason is not None:
@@ -157,15 +162,29 @@ def _plan(task: Task, limits: Limits, stats: dict[str, Any], options: dict[str, 
         stats.setdefault("rejected_reasons", []).append(report.reason)
         return False
 
-    search = Search(ct, dyn, heur, config, limits.check, accept)
+    default_weight = float(options.get("time_weight", 0.1))
     t = time.perf_counter()
+    heuristic_s = 0.0
+    outcome = None
     try:
-        outcome = search.run(initial_node(ct, dyn))
+        for attempt, (weight, per_goal) in enumerate(SCHEDULE, 1):
+            heur = RateHeuristic(ct, HeuristicConfig(time_weight=weight or default_weight))
+            budget = float("inf") if per_goal is None else per_goal * max(5, len(heur.groups))
+            search = Search(ct, dyn, heur, config, limits.check, accept)
+            stats["attempts"] = attempt
+            try:
+                outcome = search.run(initial_node(ct, dyn), budget)
+            finally:
+                heuristic_s += heur.seconds
+                for k, v in search.stats.items():
+                    stats[k] = stats.get(k, 0) + v
+            if outcome.goal is not None or outcome.exhausted:
+                break
     finally:
-        stats.update(search.stats)
         stats.update(dyn.counters)
         stats["search_s"] = time.perf_counter() - t - stats.get("validate_s", 0.0)
-        stats["heuristic_s"] = heur.seconds
+        stats["heuristic_s"] = heuristic_s
+    assert outcome is not None
     if outcome.goal is None:
         return PlanResult(PlanStatus.NO_PLAN, message="search space exhausted without a plan "
                           "(not a proof: waits stop only at critical times)")

@@ -168,8 +168,9 @@ class Search:
         return None
 
     # ------------------------------------------------------------------ the loop
-    def run(self, initial: Node) -> SearchOutcome:
-        """Lazy GBFS with a preferred-operator list; returns when the goal or the end is found."""
+    def run(self, initial: Node, max_expansions: float = float("inf")) -> SearchOutcome:
+        """Lazy GBFS with a preferred-operator list; returns when the goal or the end is found,
+        or (``goal`` None, ``exhausted`` False) after ``max_expansions`` expansions."""
         regular: list[tuple[float, int, int, Op]] = []
         preferred: list[tuple[float, int, int, Op]] = []
         boost = 0
@@ -178,6 +179,8 @@ class Search:
         pending: list[tuple[int, Op]] = [(-1, ("root",))]
         while True:
             self.check_limits()
+            if self.stats["expanded"] >= max_expansions:
+                return SearchOutcome(None, self.nodes, None, self.stats, exhausted=False)
             if pending:
                 pi, op = pending.pop()
             else:

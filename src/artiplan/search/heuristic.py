@@ -113,6 +113,9 @@ class RateHeuristic:
         self.jumps = self._jumps()
         self._side_effects()
         self.seconds = 0.0  # time spent in evaluate() [s]
+        self._moves_cache: dict[tuple[int, ...], tuple[tuple[int, tuple[Linear, ...]], ...]] = {}
+        self._active_set: set[int] = set()
+        self._active_moves: tuple[tuple[int, tuple[Linear, ...]], ...] = ()
 
     # --------------------------------------------------------------------------- setup
     def _lits(self, req: int, forb: int) -> tuple[int, ...]:
@@ -174,13 +177,33 @@ class RateHeuristic:
                 fluents.update(f for f, _ in self.key_moves.get(fact, ()))
             self.reach.append(len(fluents))
 
+    def _moves_of(self, active: tuple[int, ...]) -> tuple[tuple[int, tuple[Linear, ...]], ...]:
+        """Goal fluents the running processes move, with their rates (cached per set)."""
+        found = self._moves_cache.get(active)
+        if found is None:
+            moves: dict[int, list[Linear]] = {}
+            for p in active:
+                for fluent, lin, _ in self.ct.processes[p].rates:
+                    if lin is not None and fluent in self.goal_of_fluent:
+                        moves.setdefault(fluent, []).append(lin)
+            found = tuple((f, tuple(ls)) for f, ls in sorted(moves.items()))
+            if len(self._moves_cache) < 50_000:
+                self._moves_cache[active] = found
+        return found
+
     def _damage(
         self, p: int, fluent: int, seconds: float, values: tuple[float, ...],
         satisfied: list[bool],
     ) -> float:
-        """Goals already reached that running ``p``'s group for ``seconds`` would undo."""
+        """Goals already reached that running ``p``'s group for ``seconds`` would undo.
+
+        The group of a running process is everything running (waiting runs it all); that of a
+        process to switch on, the processes switched on with it (same trigger fact).
+        """
         damage = 0.0
-        for f2, lins in self.key_moves.get(self.proc_key[p], ()):
+        moves = self._active_moves if p in self._active_set else self.key_moves.get(
+            self.proc_key[p], ())
+        for f2, lins in moves:
             gi = self.goal_of_fluent[f2]
             if f2 == fluent or not satisfied[gi]:
                 continue
@@ -282,6 +305,8 @@ class RateHeuristic:
     ) -> Evaluation:
         cfg = self.config
         active_set = set(active)
+        self._active_set = active_set
+        self._active_moves = self._moves_of(active)
         costs: tuple[list[float], list[int]] | None = None
         h = 0.0  # time and damage; the relaxed plan's actions are counted once, at the end
         plan: set[int] = set()
