@@ -75,7 +75,7 @@ class PlanResult:
 OPTIONS = {
     "epsilon": "separation of successive actions [s] (default 0.001)",
     "time_weight": "heuristic cost of one second, in actions (default 0.1)",
-    "goal_margin": "time [s] a goal wait runs on past the goal boundary (default 0.05)",
+    "goal_margin": "time [s] a goal wait runs on past the goal boundary (default 0.01)",
     "value_precision": "decimals of values in duplicate detection (default 6)",
     "fallback_step": "step [s] for non-polynomial dynamics (default 0.1)",
     "validate": "check the plan with artiplan.semantics.validate (default True)",
@@ -144,7 +144,7 @@ def _plan(task: Task, limits: Limits, stats: dict[str, Any], options: dict[str, 
         return PlanResult(PlanStatus.UNSOLVABLE_PROVEN, message=reason)
     config = SearchConfig(
         epsilon=float(options.get("epsilon", 0.001)),
-        goal_margin=float(options.get("goal_margin", 0.05)),
+        goal_margin=float(options.get("goal_margin", 0.01)),
         value_precision=int(options.get("value_precision", 6)),
     )
     checked: dict[int, tuple[Plan, Any]] = {}

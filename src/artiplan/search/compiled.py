@@ -268,6 +268,7 @@ class CompiledProcess:
     req: int
     forb: int
     rates: tuple[tuple[int, Linear | None, NumExpr], ...]
+    pre_class: int = 0  # processes with equal preconditions share a class
 
 
 def _compile_op(i: int, op: GroundAction, comps: ComparisonTable) -> CompiledOp:
@@ -309,11 +310,19 @@ def compile_task(task: Task) -> CompiledTask:
     actions = [_compile_op(i, a, comps) for i, a in enumerate(task.actions)]
     events = [_compile_op(i, e, comps) for i, e in enumerate(task.events)]
     processes = []
+    # processes with equal preconditions (a link's gravity carried to each tip-ward link) share
+    # one compiled condition and one class, so their truth is computed once per state
+    classes: dict[Condition, int] = {}
+    shared: dict[int, tuple[CondFn, frozenset[int]]] = {}
     for i, p in enumerate(task.processes):
-        pre, used = compile_condition(p.precondition, comps, SNAP_SLACK)
+        cls = classes.setdefault(p.precondition, len(classes))
+        if cls not in shared:
+            shared[cls] = compile_condition(p.precondition, comps, SNAP_SLACK)
+        pre, used = shared[cls]
         lits = fact_literals(p.precondition) or (0, 0)
         rates = tuple((ce.fluent, linearize(ce.rate), ce.rate) for ce in p.continuous)
-        processes.append(CompiledProcess(i, p.signature, pre, used, lits[0], lits[1], rates))
+        processes.append(
+            CompiledProcess(i, p.signature, pre, used, lits[0], lits[1], rates, cls))
     goal, goal_comps = compile_condition(task.goal, comps)
     dynamic = frozenset().union(*(e.pre_comps for e in events), *(p.pre_comps for p in processes))
     watched = dynamic | goal_comps | frozenset().union(*(a.pre_comps for a in actions))

@@ -73,7 +73,13 @@ class Dynamics:
     counters: dict[str, int] = field(default_factory=lambda: {"fallback_steps": 0, "events": 0})
 
     def __post_init__(self) -> None:
-        self._proc_buckets, self._proc_always = _buckets(self.ct.processes)
+        members: dict[int, list[int]] = {}
+        for proc in self.ct.processes:
+            members.setdefault(proc.pre_class, []).append(proc.index)
+        self._class_members = [members[c] for c in range(len(members))]
+        heads = [self.ct.processes[m[0]] for m in self._class_members]
+        self._class_buckets, self._class_always = _buckets(
+            [_ClassHead(c, h.req) for c, h in enumerate(heads)])
         self._event_buckets, self._event_always = _buckets(self.ct.events)
         self._const_rates = [
             all(lin is not None and not lin[0] for _, lin, _ in p.rates) for p in self.ct.processes
@@ -90,10 +96,12 @@ class Dynamics:
     def active(self, facts: int, values: Values) -> tuple[int, ...]:
         """Indices of the processes whose precondition holds."""
         procs = self.ct.processes
-        out = [
-            i for i in _candidates(facts, self._proc_buckets, self._proc_always)
-            if not facts & procs[i].forb and procs[i].pre(facts, values)
-        ]
+        out: list[int] = []
+        for cls in _candidates(facts, self._class_buckets, self._class_always):
+            members = self._class_members[cls]
+            head = procs[members[0]]
+            if not facts & head.forb and head.pre(facts, values):
+                out.extend(members)
         out.sort()
         return tuple(out)
 
@@ -117,10 +125,8 @@ class Dynamics:
     def flow(self, facts: int, values: Values) -> tuple[tuple[int, ...], Flow]:
         """Active processes and their flow just after now (the validator's right limit)."""
         act = self.active(facts, values)
-        cands = [i for i in _candidates(facts, self._proc_buckets, self._proc_always)
-                 if not facts & self.ct.processes[i].forb]
         settled = self.right.settle_active(
-            facts, values, cands, act, lambda a: self.flow_of(a, values), self._changing)
+            facts, values, act, lambda a: self.flow_of(a, values), self._changing)
         if settled != act:
             self.counters["boundary_flows"] += 1
         return settled, self.flow_of(settled, values)
@@ -357,6 +363,12 @@ class LinearRows:
                 roots = np.concatenate((r1, r2))
             ok = roots[(roots > DT_MIN) & (roots <= horizon)]
         return float(ok.min()) if ok.size else None
+
+
+@dataclass(frozen=True)
+class _ClassHead:
+    index: int
+    req: int
 
 
 def _buckets(ops: list) -> tuple[list[tuple[int, list[int]]], list[int]]:

@@ -45,7 +45,7 @@ class SearchConfig:
 
     epsilon: float = 0.001
     value_precision: int = 6
-    goal_margin: float = 0.05
+    goal_margin: float = 0.01
     boost: int = 1000
     max_wait_steps: int = 64
 

@@ -128,7 +128,7 @@ class RightLimit:
 
     # ------------------------------------------------------------------ processes
     def settle_active(
-        self, facts: int, values: tuple[float, ...], candidates: list[int],
+        self, facts: int, values: tuple[float, ...],
         point: tuple[int, ...], flow_of: Callable[[tuple[int, ...]], Flow],
         changing: Callable[[tuple[int, ...]], frozenset[int]],
     ) -> tuple[int, ...]:
@@ -136,8 +136,9 @@ class RightLimit:
         near = self.near_comps(values)
         if not near:
             return point
-        cand = set(candidates)
-        edge = sorted({p for c in near for p in self.procs_of.get(c, ()) if p in cand})
+        procs = self.ct.processes
+        edge = sorted({p for c in near for p in self.procs_of.get(c, ())
+                       if not facts & procs[p].forb and not procs[p].req & ~facts})
         if not edge:
             return point
         active = point
@@ -147,10 +148,15 @@ class RightLimit:
             if not flow.moving and not active:
                 return active
             moving = changing(active)
-            decided = {
-                p: self.holds_after(self.ct.task.processes[p].precondition, facts, values, flow)
-                for p in edge if self.proc_reads[p] & moving
-            }
+            by_class: dict[int, bool] = {}
+            decided = {}
+            for p in edge:
+                if self.proc_reads[p] & moving:
+                    cls = self.ct.processes[p].pre_class
+                    if cls not in by_class:
+                        by_class[cls] = self.holds_after(
+                            self.ct.task.processes[p].precondition, facts, values, flow)
+                    decided[p] = by_class[cls]
             nxt = tuple(sorted(
                 (point_set - set(decided)) | {p for p, ok in decided.items() if ok}))
             if nxt == active:
