@@ -55,6 +55,8 @@ class ClosedLoop:
         self.encoding = enc
         self.pending = sorted(config.interventions, key=lambda i: i.time)
         self.replans = 0
+        #: Links carried by the vertical-plane rotation in progress (see Monitor.check).
+        self.carried: frozenset[str] = frozenset()
         self.log = RunLog(
             settings={**_settings(config), "hands": world.hands.kind,
                       "physics": asdict(world.config.physics)},
@@ -83,6 +85,7 @@ class ClosedLoop:
             else:
                 reason = outcome
             self.world.stop(release=True)
+            self.carried = frozenset()
             self.replans += 1
             if self.replans >= self.config.fallback_after:
                 self._fall_back()
@@ -186,7 +189,7 @@ class ClosedLoop:
         now = self.world.time
         predicted = pred.at(now)
         percept = self.world.perceive(reference=predicted)
-        verdict = self.monitor.check(predicted, percept.configuration)
+        verdict = self.monitor.check(predicted, percept.configuration, self.carried)
         self.log.samples.append({
             "time": round(now, 4), "plan": index, "kind": kind, "predicted": conf_dict(predicted),
             "perceived": conf_dict(percept.configuration),
@@ -204,6 +207,7 @@ class ClosedLoop:
             did, ok = dispatch(self.world, action, (enc.speed_i, enc.speed_d), pred.at(now)), True
         except ActionFailed as exc:
             did, ok = str(exc), False
+        self.carried = _carried(self.obj.links, action) if ok else frozenset()
         self.log.happenings.append({"time": round(now, 4), "plan": index,
                                     "action": action.signature, "ok": ok, "did": did})
         self.progress(f"t={now:7.2f} s  {action.signature}: {did}")
@@ -234,6 +238,17 @@ class ClosedLoop:
                       + ", ".join(f"{k} {v:.1f} deg" for k, v in errs.items()))
         self.observer(self.world, "final", "goal reached" if ok else "goal not reached")
         return ok
+
+
+def _carried(links: tuple[str, ...], action: Any) -> frozenset[str]:
+    """Links tip-ward of the rotated one while ``action`` runs a ``z-axis`` rotation (a
+    horizontal rotation carries links rigidly, as the model says; a vertical one does not)."""
+    name, args = action.name.lower(), action.args
+    if not name.startswith("start-") or len(args) != 3 or args[2].lower() != "z-axis":
+        return frozenset()
+    names = [lk.lower() for lk in links]
+    turn = names.index(args[1].lower()) if args[1].lower() in names else len(names)
+    return frozenset(links[turn + 1 :])
 
 
 def _settings(config: LoopConfig) -> dict[str, Any]:

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 from artiplan.model import ArticulatedObject, Configuration, direction_error
@@ -47,6 +48,7 @@ class Monitor:
             raise ValueError("thresholds must be positive")
         self.obj, self.threshold_deg = obj, threshold_deg
         other = threshold_deg if other_threshold_deg is None else other_threshold_deg
+        self.other = other
         last_goal = max((obj.index(lk) for lk in goal_links), default=obj.n_links)
         self.thresholds = tuple(
             threshold_deg if not goal_links or lk in goal_links
@@ -54,15 +56,24 @@ class Monitor:
             for lk in obj.links
         )
 
-    def check(self, predicted: Configuration, perceived: Configuration) -> Verdict:
-        """Compare one percept with the prediction at the same time."""
+    def check(self, predicted: Configuration, perceived: Configuration,
+              carried: frozenset[str] = frozenset()) -> Verdict:
+        """Compare one percept with the prediction at the same time.
+
+        Links in ``carried`` (carried by a vertical-plane rotation now in progress, whose effect
+        on them the model gets wrong) are not judged meanwhile: stopping mid-rotation to
+        re-plan would only start the same rotation again; whatever error remains (or a push)
+        is caught at the first percept after the rotation stops.
+        """
         errs = tuple(float(e) for e in direction_error(predicted, perceived))
+        limits = [math.inf if lk in carried else t
+                  for lk, t in zip(self.obj.links, self.thresholds, strict=True)]
         # Worst link relative to its own threshold (L1 excluded).
-        ratios = [errs[i] / self.thresholds[i] for i in range(1, len(errs))]
+        ratios = [errs[i] / limits[i] for i in range(1, len(errs))]
         if not ratios:
             return Verdict(errs, False, self.obj.links[0], 0.0)
         k = max(range(len(ratios)), key=ratios.__getitem__)
-        return Verdict(errs, ratios[k] > 1.0, self.obj.links[k + 1], self.thresholds[k + 1])
+        return Verdict(errs, ratios[k] > 1.0, self.obj.links[k + 1], limits[k + 1])
 
 
 def goal_errors(
