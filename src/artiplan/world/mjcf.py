@@ -168,6 +168,8 @@ def scene_xml(
   <asset>
     <texture name="grid" type="2d" builtin="checker" rgb1="0.82 0.84 0.86"
       rgb2="0.72 0.74 0.76" width="256" height="256"/>
+    <texture name="sky" type="skybox" builtin="gradient" rgb1="0.55 0.68 0.85"
+      rgb2="0.95 0.96 0.98" width="256" height="256"/>
     <material name="grid" texture="grid" texrepeat="8 8" reflectance="0"/>
   </asset>
   <worldbody>

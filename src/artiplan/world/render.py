@@ -21,14 +21,22 @@ if TYPE_CHECKING:
 KINDS = ("rgb", "depth", "segmentation")
 
 
-def render(world: World, camera: str, kind: str, width: int, height: int) -> Vec:
-    """One image; see :meth:`artiplan.world.scene.World.render`."""
+def render(
+    world: World, camera: str, kind: str, width: int, height: int, frame: bool = True
+) -> Vec:
+    """One image; see :meth:`artiplan.world.scene.World.render`.
+
+    With ``frame`` the named camera (overhead, side, perspective) is first moved so the object,
+    as it is now, fills the image (the overhead camera still looks straight down).
+    """
     if kind not in KINDS:
         raise ValueError(f"unknown image kind {kind!r}; valid kinds: {', '.join(KINDS)}")
     model = world.model
     if mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_CAMERA, camera) < 0:
         names = [model.camera(i).name for i in range(model.ncam)]
         raise ValueError(f"unknown camera {camera!r}; cameras: {', '.join(names)}")
+    if frame:
+        _frame_camera(world, camera, width / height)
     renderer = mujoco.Renderer(model, height=height, width=width)
     try:
         if kind == "depth":
@@ -42,6 +50,40 @@ def render(world: World, camera: str, kind: str, width: int, height: int) -> Vec
     if kind == "segmentation":
         return _link_labels(world, image)
     return np.asarray(image)
+
+
+#: Viewing directions (camera -> object) of the framed cameras.
+VIEWS = {
+    "overhead": np.array([0.0, 0.0, -1.0]),
+    "side": np.array([0.0, 1.0, 0.0]),
+    "perspective": np.array([-0.62, 0.62, -0.48]),
+}
+
+
+def _frame_camera(world: World, camera: str, aspect: float) -> None:
+    """Place ``camera`` so the object's bounding sphere fills the view."""
+    if camera not in VIEWS:
+        return
+    pts = np.vstack([world.data.xpos[world.model.body(link).id] for link in world.obj.links])
+    tip = pts[-1] + world.obj.link_length * world.link_directions()[-1]
+    pts = np.vstack([pts, tip])
+    centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
+    radius = float(np.max(np.linalg.norm(pts - centre, axis=1))) + 0.08
+    cam = world.model.camera(camera).id
+    half_fov = np.radians(world.model.cam_fovy[cam] / 2.0) * min(1.0, aspect)
+    forward = VIEWS[camera] / np.linalg.norm(VIEWS[camera])
+    world.model.cam_pos[cam] = centre - forward * radius / np.sin(half_fov)
+    right = np.cross(forward, np.array([0.0, 0.0, 1.0]))
+    right = right / np.linalg.norm(right) if np.linalg.norm(right) > 1e-9 else np.eye(3)[0]
+    up = np.cross(right, forward)
+    mat = np.column_stack([right, up, -forward])
+    quat = np.empty(4)
+    mujoco.mju_mat2Quat(quat, mat.ravel())
+    world.model.cam_quat[cam] = quat
+    world.model.cam_mode[cam] = int(mujoco.mjtCamLight.mjCAMLIGHT_FIXED)
+    # Camera poses in data are derived in the kinematics pass (the state is not changed).
+    mujoco.mj_kinematics(world.model, world.data)
+    mujoco.mj_camlight(world.model, world.data)
 
 
 def _link_labels(world: World, seg: Vec) -> Any:
@@ -67,6 +109,12 @@ def colour_labels(labels: Vec) -> Vec:
 def depth_image(depth: Vec) -> Vec:
     """(H, W) uint8 image of a depth map [m]: near is bright, far dark."""
     finite = depth[np.isfinite(depth)]
-    lo, hi = (float(finite.min()), float(finite.max())) if finite.size else (0.0, 1.0)
+    if finite.size:
+        # The sky sits at the far clipping plane: scale to the nearer part of the scene.
+        near = finite[finite < 0.98 * finite.max()]
+        near = near if near.size else finite
+        lo, hi = float(np.percentile(near, 0.5)), float(np.percentile(near, 99.5))
+    else:
+        lo, hi = 0.0, 1.0
     scaled = 1.0 - (depth - lo) / max(hi - lo, 1e-9)
     return (np.clip(scaled, 0.0, 1.0) * 255).astype(np.uint8)

@@ -300,12 +300,13 @@ class World:
 
     # -- rendering ------------------------------------------------------------------------
     def render(self, camera: str = "overhead", kind: str = "rgb", width: int = 640,
-               height: int = 480) -> Vec:
+               height: int = 480, frame: bool = True) -> Vec:
         """An image from ``camera`` (``overhead``, ``side``, ``perspective``).
 
         ``kind``: ``rgb`` (H, W, 3) uint8, ``depth`` (H, W) metres, ``segmentation`` (H, W)
-        link index (1..n; 0 for everything else).
+        link index (1..n; 0 for everything else). ``frame`` moves the camera so the object
+        fills the image.
         """
         from artiplan.world.render import render
 
-        return render(self, camera, kind, width, height)
+        return render(self, camera, kind, width, height, frame)
