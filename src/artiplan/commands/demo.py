@@ -22,16 +22,17 @@ from artiplan.errors import ExternalToolError, UsageError
 
 DEMO_LINKS = 4
 DEMO_SEED = 1
-#: The scripted human intervention of ``--intervene``: (time [s], link, plane, angle [deg]).
-INTERVENTION = (6.0, "L3", "z-axis", 25.0)
+#: The scripted human intervention of ``--intervene``: (link, plane, angle [deg], when as a
+#: fraction of the first plan's makespan).
+INTERVENTION = ("L3", "z-axis", 25.0, 0.3)
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("-o", "--out", type=Path, default=Path("demo-out"),
                         help="output folder (default demo-out)")
     parser.add_argument("--intervene", action="store_true",
-                        help=f"a human pushes {INTERVENTION[1]} by {INTERVENTION[3]:g} deg "
-                             f"at t = {INTERVENTION[0]:g} s")
+                        help=f"a human pushes {INTERVENTION[0]} by {INTERVENTION[2]:g} deg on "
+                             f"{INTERVENTION[1]} at {INTERVENTION[3]:.0%} of the first plan")
     parser.add_argument("--model", choices=("ng", "ucm", "uacm"), default="ucm")
     parser.add_argument("--links", type=int, default=DEMO_LINKS, help="links (default 4)")
     parser.add_argument("--hands", choices=("baxter", "virtual"), default="baxter",
@@ -121,7 +122,9 @@ def _loop_config(obj: Any, world: Any, args: argparse.Namespace) -> tuple[Any, s
     reach = args.reach_time if args.reach_time is not None else measure_reach_time(world)
     enc = EncodingOptions(args.model, speed_g=round(calib.speed_g, 3),
                           acceleration=round(calib.acceleration, 3), reach_time=reach)
-    interventions = (Intervention(*INTERVENTION),) if args.intervene else ()
+    link, plane, delta, fraction = INTERVENTION
+    interventions = ((Intervention(0.0, link, plane, delta, fraction=fraction),)
+                     if args.intervene else ())
     config = LoopConfig(encoding=enc, goal_style=args.goal, interventions=interventions)
     note = (f"calibrated from a release run: speed-g {enc.speed_g:g} deg/s (UCM), "
             f"acceleration {enc.acceleration:g} deg/s^2 (UACM); reach time "
