@@ -31,10 +31,12 @@ def test_one_noisy_frame_is_worse_than_the_filtered_estimate() -> None:
     conf = random_configuration(8, random.Random(3))
     one = PerceptionConfig(frames=1)
     world = World(obj, conf, WorldConfig(seed=1))
-    errs_one = [direction_error(world.perceive(conf, one).configuration, conf).mean()
-                for _ in range(20)]
-    errs_many = [direction_error(world.perceive(conf).configuration, conf).mean()
-                 for _ in range(20)]
+    errs_one = [
+        direction_error(world.perceive(conf, one).configuration, conf).mean() for _ in range(20)
+    ]
+    errs_many = [
+        direction_error(world.perceive(conf).configuration, conf).mean() for _ in range(20)
+    ]
     assert np.mean(errs_many) < 0.5 * np.mean(errs_one)
 
 

@@ -47,6 +47,10 @@ def make_world(
     if hands == "baxter":
         from artiplan.world.baxter import BaxterHands, baxter_layout
 
-        return World(obj, conf, WorldConfig(config.physics, config.perception, seed,
-                                            layout=baxter_layout(obj)), BaxterHands())
+        return World(
+            obj,
+            conf,
+            WorldConfig(config.physics, config.perception, seed, layout=baxter_layout(obj)),
+            BaxterHands(),
+        )
     raise ValueError(f"unknown hands {hands!r}; valid: virtual, baxter")

@@ -77,9 +77,7 @@ class VirtualHands(Hands):
 
     def bind(self, model: mujoco.MjModel, data: mujoco.MjData, obj: ArticulatedObject) -> None:
         self.model, self.data = model, data
-        self._mocap = {
-            h: int(model.body_mocapid[model.body(f"hand_{h}").id]) for h in self.names
-        }
+        self._mocap = {h: int(model.body_mocapid[model.body(f"hand_{h}").id]) for h in self.names}
         self._weld = {
             (h, link): model.equality(f"weld_{h}_{link}").id
             for h in self.names

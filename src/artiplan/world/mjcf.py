@@ -53,9 +53,7 @@ class SceneLayout:
 def default_layout(obj: ArticulatedObject, virtual_hands: bool = True) -> SceneLayout:
     """A layout where the chain hangs freely: the base is one chain length above the table."""
     reach = obj.n_links * obj.link_length
-    return SceneLayout(
-        anchor=(0.0, 0.0, reach + 0.25), table_top=0.15, virtual_hands=virtual_hands
-    )
+    return SceneLayout(anchor=(0.0, 0.0, reach + 0.25), table_top=0.15, virtual_hands=virtual_hands)
 
 
 def relative_quats(conf: Configuration) -> list[Vec]:
@@ -70,9 +68,7 @@ def _f(v: object) -> str:
     return " ".join(f"{x:.9g}" for x in np.ravel(np.asarray(v, dtype=float)))
 
 
-def _link_xml(
-    obj: ArticulatedObject, conf: Configuration, phys: JointPhysics, top: Vec
-) -> str:
+def _link_xml(obj: ArticulatedObject, conf: Configuration, phys: JointPhysics, top: Vec) -> str:
     """Nested bodies L1 > L2 > ... > Ln, L1's base end at ``top`` (world)."""
     rels = relative_quats(conf)
     radius = obj.thickness / 2.0

@@ -151,9 +151,7 @@ class KnowledgeBase:
 
     def affects(self) -> set[tuple[str, str]]:
         """The (l_j, l_m) pairs the ontology holds (after :meth:`reason`: the inferred ones)."""
-        rows = self.world.sparql(
-            f"PREFIX : <{IRI}#> SELECT ?a ?b WHERE {{ ?a :affects ?b . }}"
-        )
+        rows = self.world.sparql(f"PREFIX : <{IRI}#> SELECT ?a ?b WHERE {{ ?a :affects ?b . }}")
         return {(a.name, b.name) for a, b in rows}
 
     def connected(self) -> set[tuple[str, str]]:

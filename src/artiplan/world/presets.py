@@ -47,10 +47,12 @@ class JointPhysics:
 
 
 #: A 0.05 kg, 0.15 m link held horizontal feels 0.037 N m; 3.0 N m s/rad -> ~0.7 deg/s.
-PRESETS = MappingProxyType({
-    "stiff": JointPhysics(damping=3.0, frictionloss=0.0, armature=1e-4),
-    "loose": JointPhysics(damping=0.002, frictionloss=0.0, armature=1e-4),
-})
+PRESETS = MappingProxyType(
+    {
+        "stiff": JointPhysics(damping=3.0, frictionloss=0.0, armature=1e-4),
+        "loose": JointPhysics(damping=0.002, frictionloss=0.0, armature=1e-4),
+    }
+)
 
 
 def preset(name: str) -> JointPhysics:

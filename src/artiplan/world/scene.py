@@ -112,7 +112,13 @@ class World:
 
     def _build(self, conf: Configuration) -> tuple[mujoco.MjModel, mujoco.MjData]:
         xml = scene_xml(self.obj, conf, self.config.physics, self.layout)
-        model = mujoco.MjModel.from_xml_string(xml)
+        extend = getattr(self.hands, "extend_spec", None)
+        if extend is None:
+            model = mujoco.MjModel.from_xml_string(xml)
+        else:  # hands that bring their own bodies (Baxter) attach them to the spec
+            spec = mujoco.MjSpec.from_string(xml)
+            extend(spec, self.obj)
+            model = spec.compile()
         return model, mujoco.MjData(model)
 
     # -- state --------------------------------------------------------------------------
@@ -292,15 +298,19 @@ class World:
         cfg = config or self.config.perception
         centres, axes = observe(self.link_centres(), self.link_directions(), cfg, self._rng)
         ref = reference or self._reference
-        conf, sigma = estimate(
-            centres, axes, self.base_position, self.obj.link_length, cfg, ref
-        )
+        conf, sigma = estimate(centres, axes, self.base_position, self.obj.link_length, cfg, ref)
         self._reference = conf
         return Percept(self.time, conf, sigma)
 
     # -- rendering ------------------------------------------------------------------------
-    def render(self, camera: str = "overhead", kind: str = "rgb", width: int = 640,
-               height: int = 480, frame: bool = True) -> Vec:
+    def render(
+        self,
+        camera: str = "overhead",
+        kind: str = "rgb",
+        width: int = 640,
+        height: int = 480,
+        frame: bool = True,
+    ) -> Vec:
         """An image from ``camera`` (``overhead``, ``side``, ``perspective``).
 
         ``kind``: ``rgb`` (H, W, 3) uint8, ``depth`` (H, W) metres, ``segmentation`` (H, W)

@@ -1,0 +1,281 @@
+"""Baxter hands: the dual-arm Baxter of robosuite's wheel, grasping with weld constraints.
+
+The MJCF is located at run time (``importlib.util.find_spec("robosuite")``, never imported and
+never copied into the repository) and attached to the scene with ``MjSpec``. Each arm is driven
+by its torque motors (robosuite's limits: 50/100/50/50/15/15/15 N m): joint-space PD toward an
+inverse-kinematics solution (damped least squares on ``mj_jacBody``) plus the bias forces
+(gravity, Coriolis). A grasp welds the hand body to the link at their current relative pose.
+
+Limits of this implementation (honest): no fingers (the weld stands in for the gripper); the
+arm *jumps* to the grasp pose (its IK solution is written into the state: approach and retreat
+motions are not simulated); arm collisions are off (no collision avoidance).
+"""
+
+from __future__ import annotations
+
+import importlib.util
+from pathlib import Path
+
+import mujoco
+import numpy as np
+
+from artiplan.model import ArticulatedObject
+from artiplan.world.hands import Hands
+from artiplan.world.mjcf import SceneLayout
+from artiplan.world.rotations import Vec, quat_conj, quat_mul, quat_to_mat
+
+#: Where Baxter's base sits in the world [m] (on a pedestal, facing +x).
+BAXTER_BASE = (0.0, 0.0, 0.9)
+ARM_JOINTS = ("s0", "s1", "e0", "e1", "w0", "w1", "w2")
+PREFIX = "baxter_"
+#: A comfortable start: elbows bent, hands in front of the torso.
+HOME = (0.0, -0.55, 0.0, 1.2, 0.0, 0.9, 0.0)
+#: A grasp whose IK solution misses the grasp point by more than this [m] is refused.
+REACH_TOLERANCE = 0.01
+
+
+class OutOfReachError(RuntimeError):
+    """Baxter cannot put a hand on the link (use virtual hands for long chains)."""
+
+
+def baxter_xml_path() -> Path:
+    """robosuite's ``robots/baxter/robot.xml`` (raises FileNotFoundError when absent)."""
+    spec = importlib.util.find_spec("robosuite")
+    if spec is None or not spec.submodule_search_locations:
+        raise FileNotFoundError("the robosuite wheel is not installed (pip install --no-deps)")
+    root = Path(next(iter(spec.submodule_search_locations)))
+    path = root / "models" / "assets" / "robots" / "baxter" / "robot.xml"
+    if not path.exists():
+        raise FileNotFoundError(f"no Baxter model at {path}")
+    return path
+
+
+def baxter_layout(obj: ArticulatedObject) -> SceneLayout:
+    """The object in front of Baxter, its fixture a little above shoulder height."""
+    return SceneLayout(anchor=(0.62, 0.0, 1.12), table_top=0.3, virtual_hands=False)
+
+
+def attach_baxter(spec: mujoco.MjSpec, obj: ArticulatedObject) -> None:
+    """Attach Baxter to ``spec`` and add an inactive weld per (hand, link)."""
+    robot = mujoco.MjSpec.from_file(str(baxter_xml_path()))
+    for g in robot.geoms:  # no arm collisions (see the module docstring)
+        g.contype, g.conaffinity = 0, 0
+    for b in robot.bodies:
+        b.gravcomp = 0.0
+    frame = spec.worldbody.add_frame(pos=list(BAXTER_BASE))
+    frame.attach_body(robot.worldbody.first_body(), PREFIX, "")
+    for hand in ("left", "right"):
+        for link in obj.links:
+            eq = spec.add_equality()
+            eq.name = f"weld_{hand}_{link}"
+            eq.type = mujoco.mjtEq.mjEQ_WELD
+            eq.objtype = mujoco.mjtObj.mjOBJ_BODY
+            eq.name1, eq.name2 = f"{PREFIX}{hand}_hand", link
+            eq.active = False
+            eq.solref = [0.005, 1.0]
+
+
+class BaxterHands(Hands):
+    """Baxter's two arms as hands: IK + joint PD with bias compensation, welds as grasps."""
+
+    def __init__(self, kp_scale: float = 30.0, damping_ratio: float = 1.0) -> None:
+        super().__init__()
+        self.kp_scale = kp_scale
+        self.damping_ratio = damping_ratio
+
+    def extend_spec(self, spec: mujoco.MjSpec, obj: ArticulatedObject) -> None:
+        attach_baxter(spec, obj)
+
+    def bind(self, model: mujoco.MjModel, data: mujoco.MjData, obj: ArticulatedObject) -> None:
+        self.model, self.data = model, data
+        self.ik_data = mujoco.MjData(model)
+        self._hand = {h: model.body(f"{PREFIX}{h}_hand").id for h in self.names}
+        self._q = {}
+        self._v = {}
+        self._act = {}
+        for h in self.names:
+            joints = [model.joint(f"{PREFIX}{h}_{j}") for j in ARM_JOINTS]
+            self._q[h] = np.array([int(model.jnt_qposadr[j.id]) for j in joints])
+            self._v[h] = np.array([int(model.jnt_dofadr[j.id]) for j in joints])
+            self._act[h] = np.array(
+                [model.actuator(f"{PREFIX}torq_{h}_j{i}").id for i in range(len(ARM_JOINTS))]
+            )
+        self._limits = {h: model.actuator_ctrlrange[self._act[h], 1].copy() for h in self.names}
+        self._weld = {
+            (h, link): model.equality(f"weld_{h}_{link}").id
+            for h in self.names
+            for link in obj.links
+        }
+        self._lo = {
+            h: model.jnt_range[[model.joint(f"{PREFIX}{h}_{j}").id for j in ARM_JOINTS], 0]
+            for h in self.names
+        }
+        self._hi = {
+            h: model.jnt_range[[model.joint(f"{PREFIX}{h}_{j}").id for j in ARM_JOINTS], 1]
+            for h in self.names
+        }
+        for h in self.names:
+            sign = np.array([1, 1, 1, 1, 1, 1, 1.0]) if h == "right" else np.ones(7)
+            data.qpos[self._q[h]] = sign * np.array(HOME)
+        self._target_q = {h: data.qpos[self._q[h]].copy() for h in self.names}
+        mujoco.mj_forward(model, data)
+        # Velocity feedback as joint damping: the implicit integrator keeps it stable where an
+        # explicit D term on light wrist joints would not be. kd = 2 zeta sqrt(kp * M_ii).
+        full = np.zeros((model.nv, model.nv))
+        mujoco.mj_fullM(model, data, full)
+        for h in self.names:
+            inertia = np.diag(full)[self._v[h]]
+            kp = self.kp_scale * self._limits[h]
+            model.dof_damping[self._v[h]] = 2.0 * self.damping_ratio * np.sqrt(kp * inertia)
+        self._grip_offset: dict[str, tuple[Vec, Vec]] = {}
+        self._held = {h: None for h in self.names}
+        self.last_torque = {h: np.zeros(7) for h in self.names}
+
+    # -- grasping ------------------------------------------------------------------------
+    def assign(self, hold_link: str, rotate_link: str) -> tuple[str, str]:
+        """Which arm holds and which rotates, chosen by reach (the pairing with the smaller
+        worse IK miss)."""
+        straight = max(
+            self._best_grasp("left", hold_link)[2], self._best_grasp("right", rotate_link)[2]
+        )
+        swapped = max(
+            self._best_grasp("right", hold_link)[2], self._best_grasp("left", rotate_link)[2]
+        )
+        return ("left", "right") if straight <= swapped else ("right", "left")
+
+    def _centre(self, link: str) -> Vec:
+        b = self.model.body(link).id
+        half = 0.5 * float(self.model.geom(f"{link}_geom").size[1]) * 2.0
+        return self.data.xpos[b] - half * self.data.xmat[b].reshape(3, 3)[:, 2]
+
+    def grasp_poses(self, hand: str, link: str, n_turns: int = 8) -> list[tuple[Vec, Vec]]:
+        """Candidate hand poses at the link's centre: the hand's z axis (its approach)
+        perpendicular to the link, turned about it in ``n_turns`` steps, x along +-link."""
+        b = self.model.body(link).id
+        u = -self.data.xmat[b].reshape(3, 3)[:, 2]
+        centre = self._centre(link)
+        shoulder = self.data.xpos[self.model.body(f"{PREFIX}{hand}_upper_shoulder").id]
+        z0 = centre - shoulder
+        z0 -= np.dot(z0, u) * u
+        if np.linalg.norm(z0) < 1e-6:
+            z0 = np.cross(u, [1.0, 0.0, 0.0])
+        z0 /= np.linalg.norm(z0)
+        poses = []
+        for i in range(n_turns):
+            a = 2.0 * np.pi * i / n_turns
+            z = np.cos(a) * z0 + np.sin(a) * np.cross(u, z0)
+            for x in (u, -u):
+                mat = np.column_stack([x, np.cross(z, x), z])
+                quat = np.empty(4)
+                mujoco.mju_mat2Quat(quat, mat.ravel())
+                poses.append((centre - 0.03 * z, quat))
+        return poses
+
+    def _best_grasp(self, hand: str, link: str) -> tuple[Vec, Vec, float]:
+        """(joint angles, IK target position, miss [m]) of the best candidate grasp."""
+        best: tuple[Vec, Vec, float] | None = None
+        for pos, quat in self.grasp_poses(hand, link):
+            q = self.solve_ik(hand, pos, quat, iterations=150)
+            miss = self._ik_miss(hand, pos, quat)
+            if best is None or miss < best[2]:
+                best = (q, pos, miss)
+            if miss < 1e-3:
+                break
+        assert best is not None
+        return best
+
+    def grasp(self, hand: str, link: str) -> None:
+        self._check_hand(hand)
+        if self._held[hand] is not None:
+            self.release(hand)
+        q, pos, miss = self._best_grasp(hand, link)
+        if miss > REACH_TOLERANCE:
+            raise OutOfReachError(f"Baxter's {hand} hand cannot reach {link} ({miss:.3f} m short)")
+        # The arm jumps to the grasp (approach not simulated), at rest.
+        self.data.qpos[self._q[hand]] = q
+        self.data.qvel[self._v[hand]] = 0.0
+        self._target_q[hand] = q
+        mujoco.mj_forward(self.model, self.data)
+        hb, lb = self._hand[hand], self.model.body(link).id
+        # Weld relative pose: the link's pose in the hand's frame, as it is now.
+        r_h = self.data.xmat[hb].reshape(3, 3)
+        rel_pos = r_h.T @ (self.data.xpos[lb] - self.data.xpos[hb])
+        rel_quat = quat_mul(quat_conj(self.data.xquat[hb]), self.data.xquat[lb])
+        eq = self._weld[(hand, link)]
+        self.model.eq_data[eq, 0:3] = 0.0
+        self.model.eq_data[eq, 3:6] = rel_pos
+        self.model.eq_data[eq, 6:10] = rel_quat
+        self.data.eq_active[eq] = 1
+        self._grip_offset[hand] = (rel_pos, rel_quat)
+        self._held[hand] = link
+
+    def release(self, hand: str) -> None:
+        self._check_hand(hand)
+        link = self._held[hand]
+        if link is not None:
+            self.data.eq_active[self._weld[(hand, link)]] = 0
+        self._held[hand] = None
+
+    # -- motion --------------------------------------------------------------------------
+    def command(self, hand: str, pos: Vec, quat: Vec) -> None:
+        """Desired link pose -> desired hand pose (through the grip offset) -> IK target."""
+        rel_pos, rel_quat = self._grip_offset[hand]
+        hand_quat = quat_mul(quat, quat_conj(rel_quat))
+        hand_pos = pos - quat_to_mat(hand_quat) @ rel_pos
+        self._target_q[hand] = self.solve_ik(
+            hand, hand_pos, hand_quat, iterations=3, start=self._target_q[hand]
+        )
+
+    def solve_ik(
+        self,
+        hand: str,
+        pos: Vec,
+        quat: Vec,
+        iterations: int = 50,
+        start: Vec | None = None,
+        damping: float = 1e-2,
+    ) -> Vec:
+        """Joint angles [rad] putting ``hand`` at (pos, quat): damped least squares."""
+        m, d = self.model, self.ik_data
+        d.qpos[:] = self.data.qpos
+        qa, va, body = self._q[hand], self._v[hand], self._hand[hand]
+        if start is not None:
+            d.qpos[qa] = start
+        jp, jr = np.zeros((3, m.nv)), np.zeros((3, m.nv))
+        err = np.zeros(6)
+        q_err = np.empty(4)
+        for _ in range(iterations):
+            mujoco.mj_kinematics(m, d)
+            mujoco.mj_comPos(m, d)
+            err[:3] = pos - d.xpos[body]
+            mujoco.mju_mulQuat(q_err, quat, quat_conj(d.xquat[body]))
+            mujoco.mju_quat2Vel(err[3:], q_err, 1.0)
+            if np.linalg.norm(err[:3]) < 1e-5 and np.linalg.norm(err[3:]) < 1e-4:
+                break
+            mujoco.mj_jacBody(m, d, jp, jr, body)
+            jac = np.vstack([jp[:, va], jr[:, va]])
+            dq = jac.T @ np.linalg.solve(jac @ jac.T + damping**2 * np.eye(6), err)
+            step = np.linalg.norm(dq)
+            if step > 0.2:  # rad: keep steps small so the linearisation holds
+                dq *= 0.2 / step
+            d.qpos[qa] = np.clip(d.qpos[qa] + dq, self._lo[hand], self._hi[hand])
+        return d.qpos[qa].copy()
+
+    def _ik_miss(self, hand: str, pos: Vec, quat: Vec) -> float:
+        """Pose error of the last IK solution: metres + 0.1 m per radian."""
+        mujoco.mj_kinematics(self.model, self.ik_data)
+        d_pos = float(np.linalg.norm(self.ik_data.xpos[self._hand[hand]] - pos))
+        q_err = quat_mul(quat, quat_conj(self.ik_data.xquat[self._hand[hand]]))
+        d_rot = 2.0 * float(np.arccos(min(1.0, abs(q_err[0]))))
+        return d_pos + 0.1 * d_rot
+
+    def control(self, dt: float) -> None:
+        """Joint PD toward the IK targets plus bias forces, clipped to the motor limits."""
+        d = self.data
+        for h in self.names:
+            qa, va, act = self._q[h], self._v[h], self._act[h]
+            kp = self.kp_scale * self._limits[h]
+            tau = d.qfrc_bias[va] + kp * (self._target_q[h] - d.qpos[qa])
+            tau = np.clip(tau, -self._limits[h], self._limits[h])
+            d.ctrl[act] = tau
+            self.last_torque[h] = tau
