@@ -16,6 +16,7 @@ import numpy as np
 from artiplan.model import ArticulatedObject
 from artiplan.world.mjcf import HAND_NAMES
 from artiplan.world.rotations import Vec
+from artiplan.world.servo import ServoGains
 
 
 class Hands(ABC):
@@ -26,6 +27,8 @@ class Hands(ABC):
     """
 
     names: tuple[str, str] = HAND_NAMES
+    #: Gains of the world's pose servo that suit these hands.
+    servo_gains: ServoGains = ServoGains()
 
     def __init__(self) -> None:
         self._held: dict[str, str | None] = {h: None for h in self.names}

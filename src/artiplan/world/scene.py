@@ -44,14 +44,14 @@ class WorldConfig:
         physics: Joint damping/friction and time step (``preset("stiff")`` or ``"loose"``).
         perception: Camera noise and estimation.
         seed: Seeds the camera noise.
-        servo: Gains of the hands' pose servo.
+        servo: Gains of the hands' pose servo (None: the hands' own ``servo_gains``).
         layout: Where the object, table and cameras are (None: a default for the hands).
     """
 
     physics: JointPhysics = field(default_factory=lambda: preset("stiff"))
     perception: PerceptionConfig = field(default_factory=PerceptionConfig)
     seed: int = 0
-    servo: ServoGains = field(default_factory=ServoGains)
+    servo: ServoGains | None = None
     layout: SceneLayout | None = None
 
 
@@ -243,7 +243,7 @@ class World:
         self.hands.grasp(hand, link)
         body = self.model.body(link).id
         pose = (self.data.xpos[body].copy(), self.data.xquat[body].copy())
-        self._goals[hand] = (link, pose, Servo(self.config.servo))
+        self._goals[hand] = (link, pose, Servo(self.config.servo or self.hands.servo_gains))
 
     def _release_all(self) -> None:
         self.hands.release_all()
