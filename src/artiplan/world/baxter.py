@@ -57,7 +57,9 @@ def baxter_xml_path() -> Path:
 
 def baxter_layout(obj: ArticulatedObject) -> SceneLayout:
     """The object in front of Baxter, its fixture a little above shoulder height."""
-    return SceneLayout(anchor=(0.62, 0.0, 1.12), table_top=0.3, virtual_hands=False)
+    return SceneLayout(
+        anchor=(0.62, 0.0, 1.12), table_top=0.3, virtual_hands=False, fixture_arm=(0.4, 0.0, 0.0)
+    )
 
 
 def attach_baxter(spec: mujoco.MjSpec, obj: ArticulatedObject) -> None:
@@ -65,8 +67,19 @@ def attach_baxter(spec: mujoco.MjSpec, obj: ArticulatedObject) -> None:
     robot = mujoco.MjSpec.from_file(str(baxter_xml_path()))
     for g in robot.geoms:  # no arm collisions (see the module docstring)
         g.contype, g.conaffinity = 0, 0
+        if g.group == 0:  # robosuite's collision shapes: keep them out of the images
+            g.group = 3
     for b in robot.bodies:
         b.gravcomp = 0.0
+    spec.worldbody.add_geom(
+        name="baxter_pedestal",
+        type=mujoco.mjtGeom.mjGEOM_CYLINDER,
+        size=[0.22, BAXTER_BASE[2] / 2 - 0.05, 0],
+        pos=[BAXTER_BASE[0] - 0.05, BAXTER_BASE[1], BAXTER_BASE[2] / 2 - 0.05],
+        rgba=[0.2, 0.2, 0.22, 1.0],
+        contype=0,
+        conaffinity=0,
+    )
     frame = spec.worldbody.add_frame(pos=list(BAXTER_BASE))
     frame.attach_body(robot.worldbody.first_body(), PREFIX, "")
     for hand in ("left", "right"):

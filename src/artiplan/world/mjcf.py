@@ -41,6 +41,7 @@ class SceneLayout:
         with_table: Draw and collide with the table.
         virtual_hands: Add two mocap hands and their (inactive) welds to every link.
         weld_solref: Weld constraint time constant and damping ratio (grasp stiffness).
+        fixture_arm: The fixture's arm, from the clamp to its post, relative to the clamp [m].
     """
 
     anchor: tuple[float, float, float]
@@ -48,6 +49,7 @@ class SceneLayout:
     with_table: bool = True
     virtual_hands: bool = True
     weld_solref: tuple[float, float] = (0.005, 1.0)
+    fixture_arm: tuple[float, float, float] = (-0.35, 0.0, 0.0)
 
 
 def default_layout(obj: ArticulatedObject, virtual_hands: bool = True) -> SceneLayout:
@@ -149,11 +151,12 @@ def scene_xml(
             f'size="0.45 0.45 0.02" rgba="0.55 0.42 0.3 1" contype="{ENV_CONTYPE}" '
             f'conaffinity="{ENV_CONAFFINITY}"/>'
         )
+    arm = np.asarray(layout.fixture_arm) + np.array([0.0, 0.0, 0.03])
     post = (
         f'<body name="fixture" pos="{_f(top)}">'
         f'<geom name="fixture_block" type="box" size="0.03 0.03 0.03" pos="0 0 0.03" '
         f'rgba="0.25 0.25 0.28 1" contype="0" conaffinity="0"/>'
-        f'<geom name="fixture_arm" type="capsule" fromto="0 0 0.03 -0.35 0 0.03" size="0.012" '
+        f'<geom name="fixture_arm" type="capsule" fromto="0 0 0.03 {_f(arm)}" size="0.012" '
         f'rgba="0.25 0.25 0.28 1" contype="0" conaffinity="0"/></body>'
     )
     return f"""<mujoco model="artiplan_world">

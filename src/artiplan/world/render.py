@@ -67,6 +67,10 @@ def _frame_camera(world: World, camera: str, aspect: float) -> None:
     pts = np.vstack([world.data.xpos[world.model.body(link).id] for link in world.obj.links])
     tip = pts[-1] + world.obj.link_length * world.link_directions()[-1]
     pts = np.vstack([pts, tip])
+    if camera == "perspective":  # show the robot's hands too, when there is a robot
+        names = ("baxter_left_hand", "baxter_right_hand", "baxter_head")
+        ids = [mujoco.mj_name2id(world.model, mujoco.mjtObj.mjOBJ_BODY, n) for n in names]
+        pts = np.vstack([pts] + [world.data.xpos[i] for i in ids if i >= 0])
     centre = 0.5 * (pts.min(axis=0) + pts.max(axis=0))
     radius = float(np.max(np.linalg.norm(pts - centre, axis=1))) + 0.08
     cam = world.model.camera(camera).id
