@@ -65,6 +65,15 @@ def baxter_layout(obj: ArticulatedObject) -> SceneLayout:
 def attach_baxter(spec: mujoco.MjSpec, obj: ArticulatedObject) -> None:
     """Attach Baxter to ``spec`` and add an inactive weld per (hand, link)."""
     robot = mujoco.MjSpec.from_file(str(baxter_xml_path()))
+    gripper_xml = baxter_xml_path().parents[2] / "grippers" / "rethink_gripper.xml"
+    if gripper_xml.exists():  # Rethink's electric grippers on both wrists (visual fingers)
+        for hand in ("left", "right"):
+            gripper = mujoco.MjSpec.from_file(str(gripper_xml))
+            for site in gripper.sites:  # robosuite's visual aids (long grip-axis cylinders)
+                site.group = 4
+            robot.body(f"{hand}_hand").add_frame().attach_body(
+                gripper.worldbody.first_body(), f"{hand}_gripper_", ""
+            )
     for g in robot.geoms:  # no arm collisions (see the module docstring)
         g.contype, g.conaffinity = 0, 0
         if g.group == 0:  # robosuite's collision shapes: keep them out of the images
@@ -150,6 +159,19 @@ class BaxterHands(Hands):
             kp = self.kp_scale * self._limits[h]
             model.dof_damping[self._v[h]] = 2.0 * self.damping_ratio * np.sqrt(kp * inertia)
         self._grip_offset: dict[str, tuple[Vec, Vec]] = {}
+        # Fingers (when the grippers are attached): position actuators, open or on the link.
+        self._fingers: dict[str, list[tuple[int, float, float]]] = {h: [] for h in self.names}
+        self._depth = 0.03
+        for h in self.names:
+            for side, open_, closed in (("l", 0.0115, -0.003), ("r", -0.0115, 0.003)):
+                name = f"{PREFIX}{h}_gripper_gripper_{side}_finger_joint"
+                aid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_ACTUATOR, name)
+                if aid >= 0:
+                    self._fingers[h].append((aid, open_, closed))
+            eef = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_BODY, f"{PREFIX}{h}_gripper_eef")
+            if eef >= 0:  # grasp point: between the finger pads, on the hand's z axis
+                r_h = data.xmat[self._hand[h]].reshape(3, 3)
+                self._depth = float((r_h.T @ (data.xpos[eef] - data.xpos[self._hand[h]]))[2])
         self._held = {h: None for h in self.names}
         self.last_torque = {h: np.zeros(7) for h in self.names}
 
@@ -190,7 +212,7 @@ class BaxterHands(Hands):
                 mat = np.column_stack([x, np.cross(z, x), z])
                 quat = np.empty(4)
                 mujoco.mju_mat2Quat(quat, mat.ravel())
-                poses.append((centre - 0.03 * z, quat))
+                poses.append((centre - self._depth * z, quat))
         return poses
 
     def _best_grasp(self, hand: str, link: str) -> tuple[Vec, Vec, float]:
@@ -308,3 +330,5 @@ class BaxterHands(Hands):
             tau = np.clip(tau, -self._limits[h], self._limits[h])
             d.ctrl[act] = tau
             self.last_torque[h] = tau
+            for aid, open_, closed in self._fingers[h]:
+                d.ctrl[aid] = closed if self._held[h] is not None else open_
