@@ -4,7 +4,7 @@ Usage:
     .venv/bin/python benchmarks/planner_compare.py ARTIPLAN.jsonl BENCH.jsonl [--planner enhsp]
 
 ARTIPLAN.jsonl: written by ``benchmarks/planner_suite.py --jsonl``. BENCH.jsonl: ``artiplan bench``
-results. Per problem both attempted: who solved it (a peer's plan counts if our validator accepts
+results (problems matched by ``model/file``, so two copies of the same suite seed match). Per problem both attempted: who solved it (a peer's plan counts if our validator accepts
 it), time ratio, and plan quality where both solved: makespan and number of actions. Our trailing
 no-op ``observe`` is not counted as an action (it plays the role of ENHSP's ``@PlanEND``).
 """
@@ -22,20 +22,26 @@ def load(path: Path) -> list[dict[str, object]]:
     return [json.loads(line) for line in path.read_text().splitlines() if line.strip()]
 
 
+def _key(row: dict[str, object]) -> str:
+    """``model/pN-T.pddl``: the same problem in two copies of the suite (same seed)."""
+    path = Path(str(row["problem"]))
+    return f"{path.parent.name}/{path.name}"
+
+
 def main() -> int:
     ap = argparse.ArgumentParser()
     ap.add_argument("ours", type=Path)
     ap.add_argument("bench", type=Path)
     ap.add_argument("--planner", default="enhsp")
     args = ap.parse_args()
-    ours = {str(Path(str(r["problem"])).resolve()): r for r in load(args.ours)}
+    ours = {_key(r): r for r in load(args.ours)}
     peer = [r for r in load(args.bench) if r.get("planner") == args.planner]
     both = better_mk = better_len = 0
     ratios: list[float] = []
     t_ours = t_peer = 0.0
     solved_ours = solved_peer = accepted_own = 0
     for r in peer:
-        o = ours.get(str(Path(str(r["problem"])).resolve()))
+        o = ours.get(_key(r))
         if o is None:
             continue
         ok_o = o["status"] == "solved"

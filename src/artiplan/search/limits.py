@@ -64,6 +64,7 @@ class Limits:
             # often (the CPU time never runs ahead of the wall clock in one thread)
             cpu = time.process_time() - self._cpu0 if self._calls % 16 == 0 else 0.0
             if wall > self.time_limit or cpu > self.time_limit:
+                cpu = time.process_time() - self._cpu0
                 raise LimitReached(
                     "time", f"time limit of {self.time_limit:g} s reached "
                     f"(wall {wall:.2f} s, cpu {cpu:.2f} s)")
