@@ -211,6 +211,10 @@ class KnowledgeBase:
         """The PDDL+ problem from the ontology: latest percept -> initial state; the goal."""
         init, _ = self.latest_configuration(decimals)
         target, style, seed = self.target()
+        inferred = self.affects()
+        if inferred and inferred != set(self.obj.affects()):
+            # The encoding derives affects from the chain; the reasoner must agree with it.
+            raise ValueError(f"the ontology's affects {sorted(inferred)} disagree with the chain")
         return problem_pddl(self.obj, init, target, options, goal_style=style, seed=seed)
 
     def save(self, path: str | Path) -> None:
