@@ -35,6 +35,9 @@ HOME = (0.0, -0.55, 0.0, 1.2, 0.0, 0.9, 0.0)
 REACH_TOLERANCE = 0.01
 #: Pull of the IK's null-space term toward mid-range joint angles [rad per iteration].
 NULLSPACE_GAIN = 0.05
+#: The same while tracking, called every 2 ms step: small, or the arm's self-motion outruns
+#: its motors (0.05 per call saturated every joint).
+TRACK_NULLSPACE_GAIN = 0.0005
 #: Grasps with a joint closer than this to a limit [rad] score worse (less room to rotate).
 LIMIT_MARGIN = 0.3
 
@@ -269,7 +272,12 @@ class BaxterHands(Hands):
         hand_quat = quat_mul(quat, quat_conj(rel_quat))
         hand_pos = pos - quat_to_mat(hand_quat) @ rel_pos
         self._target_q[hand] = self.solve_ik(
-            hand, hand_pos, hand_quat, iterations=3, start=self._target_q[hand]
+            hand,
+            hand_pos,
+            hand_quat,
+            iterations=2,
+            start=self._target_q[hand],
+            nullspace=TRACK_NULLSPACE_GAIN,
         )
 
     def solve_ik(
@@ -280,6 +288,7 @@ class BaxterHands(Hands):
         iterations: int = 50,
         start: Vec | None = None,
         damping: float = 1e-2,
+        nullspace: float = NULLSPACE_GAIN,
     ) -> Vec:
         """Joint angles [rad] putting ``hand`` at (pos, quat): damped least squares."""
         m, d = self.model, self.ik_data
@@ -304,7 +313,7 @@ class BaxterHands(Hands):
             dq = jac.T @ np.linalg.solve(jjt, err)
             # Null space: drift toward mid-range, away from joint limits (the arm has 7 dof).
             mid = 0.5 * (self._lo[hand] + self._hi[hand])
-            toward = NULLSPACE_GAIN * (mid - d.qpos[qa]) / (self._hi[hand] - self._lo[hand])
+            toward = nullspace * (mid - d.qpos[qa]) / (self._hi[hand] - self._lo[hand])
             dq += toward - jac.T @ np.linalg.solve(jjt, jac @ toward)
             step = np.linalg.norm(dq)
             if step > 0.2:  # rad: keep steps small so the linearisation holds
