@@ -24,6 +24,8 @@ def _run(*args: str) -> subprocess.CompletedProcess[str]:
     )
 
 
+@pytest.mark.slow
+@pytest.mark.ci
 def test_snapshot_writes_images_and_the_configuration(tmp_path: Path) -> None:
     out = tmp_path / "snap"
     r = _run("snapshot", "--links", "3", "--width", "160", "--height", "120", "-o", str(out))

@@ -79,3 +79,16 @@ def test_push_turns_a_link_and_carries_the_rest() -> None:
     assert now.theta[3] == pytest.approx(55.0, abs=1e-6)
     with pytest.raises(ValueError, match="clamped"):
         world.push("L1", "z-axis", 5.0)
+
+
+def test_motion_is_reported_and_stop_releases() -> None:
+    world = World(ArticulatedObject(4), random_configuration(4, random.Random(2)))
+    with pytest.raises(ValueError, match="neighbour"):
+        world.hold_and_rotate("L1", "L3", "z-axis", 1)
+    world.hold_and_rotate("L2", "L3", "z-axis", -1, 10.0)
+    assert world.motion == ("L2", "L3", "z-axis", -1)
+    assert {world.hands.held("left"), world.hands.held("right")} == {"L2", "L3"}
+    world.step(0.1)
+    world.stop()
+    assert world.motion is None
+    assert world.hands.held("left") is None and world.hands.held("right") is None

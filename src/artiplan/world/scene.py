@@ -66,6 +66,9 @@ class Motion:
     axis: Vec
     speed_rad_s: float
     t0: float
+    hold_link: str = ""
+    plane: str = ""
+    direction: int = 0
 
     def target(self, t: float) -> tuple[Vec, Vec]:
         """Desired (position, quaternion) of the link's frame at time ``t``."""
@@ -226,7 +229,16 @@ class World:
             axis,
             math.radians(speed_deg_s),
             self.time,
+            hold_link,
+            plane,
+            direction,
         )
+
+    @property
+    def motion(self) -> tuple[str, str, str, int] | None:
+        """The rotation in progress as (hold link, rotated link, plane, direction), or None."""
+        m = self._motion
+        return None if m is None else (m.hold_link, m.link, m.plane, m.direction)
 
     def stop(self, release: bool = True) -> None:
         """Stop rotating; with ``release`` open both hands (the links become free), else keep
