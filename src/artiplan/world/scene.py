@@ -106,7 +106,7 @@ class World:
         self._motion: Motion | None = None
         #: hand -> (link, fixed desired pose or None when the motion drives it, servo)
         self._goals: dict[str, tuple[str, tuple[Vec, Vec] | None, Servo]] = {}
-        self._reference = conf.wrapped()
+        self._reference = self._estimate = conf.wrapped()
         self.set_configuration(conf)
 
     # -- construction -------------------------------------------------------------------
@@ -150,7 +150,7 @@ class World:
             self.data.qpos[a : a + 4] = quat_mul(quat_conj(body_q), rel)
             self.data.qvel[self._vadr[i] : self._vadr[i] + 3] = 0.0
         mujoco.mj_forward(self.model, self.data)
-        self._reference = conf.wrapped()
+        self._reference = self._estimate = conf.wrapped()
 
     def link_directions(self) -> Vec:
         """(n, 3) unit vectors, base end -> tip end, of every link now."""
@@ -164,7 +164,8 @@ class World:
     def true_configuration(self, reference: Configuration | None = None) -> Configuration:
         """The simulator's configuration (ground truth), covers chosen near ``reference``.
 
-        Without a reference, the last configuration set, read or perceived is used.
+        Without a reference, the last configuration set or read is used (perception keeps
+        its own previous estimate: the truth does not leak into it).
         """
         ref = reference or self._reference
         conf = configuration_from_directions(self.link_directions(), ref)
@@ -309,9 +310,9 @@ class World:
         """
         cfg = config or self.config.perception
         centres, axes = observe(self.link_centres(), self.link_directions(), cfg, self._rng)
-        ref = reference or self._reference
+        ref = reference or self._estimate
         conf, sigma = estimate(centres, axes, self.base_position, self.obj.link_length, cfg, ref)
-        self._reference = conf
+        self._estimate = conf
         return Percept(self.time, conf, sigma)
 
     # -- rendering ------------------------------------------------------------------------
