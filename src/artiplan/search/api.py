@@ -168,7 +168,8 @@ def _plan(task: Task, limits: Limits, stats: dict[str, Any], options: dict[str, 
     outcome = None
     try:
         for attempt, (weight, per_goal) in enumerate(SCHEDULE, 1):
-            heur = RateHeuristic(ct, HeuristicConfig(time_weight=weight or default_weight))
+            heur = RateHeuristic(ct, HeuristicConfig(time_weight=weight or default_weight),
+                                 dyn.active)
             budget = float("inf") if per_goal is None else per_goal * max(5, len(heur.groups))
             search = Search(ct, dyn, heur, config, limits.check, accept)
             stats["attempts"] = attempt

@@ -19,6 +19,7 @@ from __future__ import annotations
 import heapq
 import math
 import time
+from collections.abc import Callable
 from dataclasses import dataclass
 
 from artiplan.pddl.task import And, Atom, Condition, Not
@@ -90,8 +91,18 @@ def _conjuncts(cond: Condition) -> list[Condition]:
 class RateHeuristic:
     """The rate-aware numeric relaxation over a compiled task."""
 
-    def __init__(self, ct: CompiledTask, config: HeuristicConfig | None = None) -> None:
+    def __init__(
+        self, ct: CompiledTask, config: HeuristicConfig | None = None,
+        active_fn: Callable[[int, tuple[float, ...]], tuple[int, ...]] | None = None,
+    ) -> None:
+        """``active_fn(facts, values)``: the processes running in a state (from the search's
+        simulator); with it, the side effects of switching a process on are those of the
+        actions that switch it on, applied to the current state (gravity included)."""
         self.ct = ct
+        self.active_fn = active_fn
+        self._after: dict[tuple[int, ...], tuple[tuple[int, tuple[Linear, ...]], ...]] = {}
+        self._state: tuple[int, tuple[float, ...], tuple[list[float], list[int]] | None] = (
+            0, (), None)
         self.config = config or HeuristicConfig()
         self.n_facts = len(ct.task.facts)
         self.groups = self._groups()
@@ -177,6 +188,35 @@ class RateHeuristic:
                 fluents.update(f for f, _ in self.key_moves.get(fact, ()))
             self.reach.append(len(fluents))
 
+    def _chain(
+        self, lits: tuple[int, ...], costs: tuple[list[float], list[int]]
+    ) -> tuple[int, ...]:
+        """The relaxed plan's actions that make ``lits`` true, supporters first."""
+        cost, supp = costs
+        out: list[int] = []
+
+        def visit(ls: tuple[int, ...], depth: int) -> None:
+            for lit in ls:
+                a = supp[lit]
+                if cost[lit] == 0.0 or a < 0 or a in out or depth > 4:
+                    continue
+                visit(self.pre_lits[a], depth + 1)
+                out.append(a)
+
+        visit(lits, 0)
+        return tuple(out)
+
+    def _after_moves(self, chain: tuple[int, ...]) -> tuple[tuple[int, tuple[Linear, ...]], ...]:
+        """Goal-fluent moves of the processes running after ``chain`` is applied now."""
+        found = self._after.get(chain)
+        if found is None:
+            facts, values, _ = self._state
+            for a in chain:
+                facts, values = self.ct.actions[a].effect(facts, values)
+            assert self.active_fn is not None
+            found = self._after[chain] = self._moves_of(self.active_fn(facts, values))
+        return found
+
     def _moves_of(self, active: tuple[int, ...]) -> tuple[tuple[int, tuple[Linear, ...]], ...]:
         """Goal fluents the running processes move, with their rates (cached per set)."""
         found = self._moves_cache.get(active)
@@ -201,8 +241,12 @@ class RateHeuristic:
         process to switch on, the processes switched on with it (same trigger fact).
         """
         damage = 0.0
-        moves = self._active_moves if p in self._active_set else self.key_moves.get(
-            self.proc_key[p], ())
+        if p in self._active_set:
+            moves = self._active_moves
+        elif self.active_fn is not None and self._state[2] is not None:
+            moves = self._after_moves(self._chain(self.proc_lits[p], self._state[2]))
+        else:
+            moves = self.key_moves.get(self.proc_key[p], ())
         for f2, lins in moves:
             gi = self.goal_of_fluent[f2]
             if f2 == fluent or not satisfied[gi]:
@@ -307,6 +351,8 @@ class RateHeuristic:
         active_set = set(active)
         self._active_set = active_set
         self._active_moves = self._moves_of(active)
+        self._after = {}
+        self._state = (facts, values, None)
         costs: tuple[list[float], list[int]] | None = None
         h = 0.0  # time and damage; the relaxed plan's actions are counted once, at the end
         plan: set[int] = set()
@@ -322,6 +368,7 @@ class RateHeuristic:
             needed_here = True
             if costs is None:
                 costs = self.fact_costs(facts)
+                self._state = (facts, values, costs)
             if g.fluent is None:
                 c = costs[0][g.literal] if g.literal is not None else 1.0
                 if c == math.inf:
