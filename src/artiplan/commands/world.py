@@ -6,6 +6,8 @@ import argparse
 import json
 import os
 import random
+import subprocess
+import sys
 from pathlib import Path
 
 from artiplan.errors import ExternalToolError, InputError, UsageError
@@ -41,10 +43,22 @@ def run(args: argparse.Namespace) -> int:
     if args.world_command not in ("snapshot", "ontology"):
         raise UsageError("usage: artiplan world {snapshot,ontology} [options] -o DIR")
     # MuJoCo reads the GL backend at import: choose a headless one before importing the world.
+    chosen = "MUJOCO_GL" not in os.environ
     os.environ.setdefault("MUJOCO_GL", "egl")
     if args.world_command == "ontology":
         return _ontology(args)
-    return _snapshot(args)
+    try:
+        return _snapshot(args)
+    except ExternalToolError:
+        if not chosen or "mujoco" not in sys.modules or os.environ["MUJOCO_GL"] != "egl":
+            raise
+        # EGL failed: MuJoCo cannot switch backends in-process, so run again with OSMesa.
+        print(
+            "artiplan world: EGL rendering failed; retrying with MUJOCO_GL=osmesa", file=sys.stderr
+        )
+        env = {**os.environ, "MUJOCO_GL": "osmesa"}
+        cmd = [sys.executable, "-m", "artiplan", "world", *sys.argv[sys.argv.index("world") + 1 :]]
+        return subprocess.run(cmd, env=env).returncode
 
 
 def _ontology(args: argparse.Namespace) -> int:
@@ -114,6 +128,8 @@ def _snapshot(args: argparse.Namespace) -> int:
                 f"headless rendering failed ({exc}); try MUJOCO_GL=osmesa"
             ) from exc
         raise
+    finally:
+        world.close()
     world.true_configuration().save(out / "configuration.json", obj)
     percept = world.perceive()
     (out / "percept.json").write_text(

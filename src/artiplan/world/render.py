@@ -37,16 +37,15 @@ def render(
         raise ValueError(f"unknown camera {camera!r}; cameras: {', '.join(names)}")
     if frame:
         _frame_camera(world, camera, width / height)
-    renderer = mujoco.Renderer(model, height=height, width=width)
-    try:
-        if kind == "depth":
-            renderer.enable_depth_rendering()
-        elif kind == "segmentation":
-            renderer.enable_segmentation_rendering()
-        renderer.update_scene(world.data, camera=camera)
-        image = renderer.render()
-    finally:
-        renderer.close()
+    renderer = world.renderer(width, height)
+    renderer.disable_depth_rendering()
+    renderer.disable_segmentation_rendering()
+    if kind == "depth":
+        renderer.enable_depth_rendering()
+    elif kind == "segmentation":
+        renderer.enable_segmentation_rendering()
+    renderer.update_scene(world.data, camera=camera)
+    image = renderer.render()
     if kind == "segmentation":
         return _link_labels(world, image)
     return np.asarray(image)

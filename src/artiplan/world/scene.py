@@ -103,6 +103,7 @@ class World:
         ]
         self.hands.bind(self.model, self.data, obj)
         self._rng = np.random.default_rng(self.config.seed)
+        self._renderers: dict[tuple[int, int], mujoco.Renderer] = {}
         self._motion: Motion | None = None
         #: hand -> (link, fixed desired pose or None when the motion drives it, servo)
         self._goals: dict[str, tuple[str, tuple[Vec, Vec] | None, Servo]] = {}
@@ -333,3 +334,16 @@ class World:
         from artiplan.world.render import render
 
         return render(self, camera, kind, width, height, frame)
+
+    def renderer(self, width: int, height: int) -> mujoco.Renderer:
+        """A renderer of this size, created once (an OpenGL context is costly)."""
+        key = (width, height)
+        if key not in self._renderers:
+            self._renderers[key] = mujoco.Renderer(self.model, height=height, width=width)
+        return self._renderers[key]
+
+    def close(self) -> None:
+        """Free the renderers' OpenGL contexts (call before exit when you rendered)."""
+        for r in self._renderers.values():
+            r.close()
+        self._renderers.clear()
