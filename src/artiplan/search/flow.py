@@ -70,6 +70,28 @@ class FlowShape:
     a_rows: dict[int, dict[int, float]]
     raw: tuple[tuple[int, NumExpr], ...]  # rates that are not linear: frozen at their value
 
+    def dense(self, n: int) -> tuple[list[int], np.ndarray, np.ndarray, np.ndarray]:
+        """(fluents with a rate, b, A over all n fluents, A restricted to those fluents)."""
+        cached = _DENSE.get(id(self))
+        if cached is not None and cached[0] is self:
+            return cached[1]
+        fl = sorted(self.b)
+        pos = {f: i for i, f in enumerate(fl)}
+        bvec = np.array([self.b[f] for f in fl])
+        a_full = np.zeros((len(fl), n))
+        a_own = np.zeros((len(fl), len(fl)))
+        for f, row in self.a_rows.items():
+            for j, a in row.items():
+                a_full[pos[f], j] += a
+                if j in pos:
+                    a_own[pos[f], pos[j]] += a
+        out = (fl, bvec, a_full, a_own)
+        _DENSE[id(self)] = (self, out)
+        return out
+
+
+_DENSE: dict[int, tuple[FlowShape, tuple[list[int], np.ndarray, np.ndarray, np.ndarray]]] = {}
+
 
 def flow_shape(processes: list[CompiledProcess], active: tuple[int, ...]) -> FlowShape:
     b: dict[int, float] = {}
@@ -99,6 +121,8 @@ def compute_flow(
         return STILL
     if shape is None:
         shape = flow_shape(processes, active)
+    if shape.a_rows and not shape.raw:
+        return _polynomial_flow(shape, values, fallback_step)
     b, a_rows = shape.b, shape.a_rows
     exact = not shape.raw
     first = dict(b)
@@ -127,6 +151,30 @@ def compute_flow(
             if cs:
                 coeffs_out[f] = tuple(cs)
     return Flow(coeffs_out, math.inf if exact else fallback_step, exact)
+
+
+def _polynomial_flow(shape: FlowShape, values: tuple[float, ...], fallback_step: float) -> Flow:
+    """``compute_flow`` for ``dv/dt = A v + b`` with numpy (UACM: speeds feed angles)."""
+    fl, bvec, a_full, a_own = shape.dense(len(values))
+    derivs = [bvec + a_full @ np.asarray(values)]
+    exact = True
+    while np.any(derivs[-1]):
+        if len(derivs) >= MAX_DEGREE:
+            exact = False
+            break
+        derivs.append(a_own @ derivs[-1])
+    if not np.any(derivs[-1]) and len(derivs) > 1:
+        derivs.pop()
+    table = np.array(derivs) / np.array(
+        [math.factorial(k + 1) for k in range(len(derivs))])[:, None]
+    coeffs: dict[int, Poly] = {}
+    for i, f in enumerate(fl):
+        cs = [float(c) for c in table[:, i]]
+        while cs and cs[-1] == 0.0:
+            cs.pop()
+        if cs:
+            coeffs[f] = tuple(cs)
+    return Flow(coeffs, math.inf if exact else fallback_step, exact)
 
 
 def _eval(expr: NumExpr, values: tuple[float, ...]) -> float:
