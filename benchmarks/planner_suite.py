@@ -5,7 +5,8 @@ Usage:
         [--only ng,ucm-0.1] [--process N]
 
 Per problem: status, planning time after parsing (in-process, ``search`` + ``compile`` +
-``validate``), time with loading, plan length and makespan. Per (model, size): solved / proven
+``validate``; wall and CPU seconds: on a shared machine the CPU time is the stable one), time
+with loading, plan length and makespan. Per (model, size): solved / proven
 unsolvable / unknown, median / max / total time. With ``--process N``, also time N problems
 per model as separate ``artiplan plan`` processes (process start included).
 """
@@ -42,14 +43,17 @@ def run_one(domain: Path, prob: Path, limit: float) -> dict[str, object]:
     task = load_task(str(domain), str(prob))
     load_s = time.perf_counter() - t0
     t1 = time.perf_counter()
+    c1 = time.process_time()
     res = plan_task(task, time_limit=limit)
     plan_s = time.perf_counter() - t1
+    plan_cpu_s = time.process_time() - c1
     noop = False
     if res.plan is not None and res.plan.actions:
         eff = task.action_by_signature(res.plan.actions[-1].signature).effect
         noop = not (eff.add or eff.delete or eff.numeric or eff.conditional)
     return {
         "problem": str(prob), "status": res.status.value, "plan_s": plan_s,
+        "plan_cpu_s": plan_cpu_s,
         "with_load_s": plan_s + load_s, "length": res.stats.get("plan_length"),
         "makespan": res.stats.get("makespan"), "expanded": res.stats.get("expanded"),
         "message": res.message, "ends_with_noop": noop,
@@ -77,10 +81,12 @@ def summary(rows: list[dict[str, object]]) -> str:
         lines.append(f"| {model} | {size} | {solved} | {unsolv} | {len(rs) - solved - unsolv} "
                      f"| {statistics.median(times):.3f} | {max(times):.3f} | {sum(times):.2f} |")
     all_t = [float(r["plan_s"]) for r in rows]  # type: ignore[arg-type]
+    all_c = [float(r["plan_cpu_s"]) for r in rows]  # type: ignore[arg-type]
     solved = sum(r["status"] == "solved" for r in rows)
     lines.append(f"\nall: {len(rows)} problems, solved {solved}, "
                  f"median {statistics.median(all_t):.3f} s, max {max(all_t):.3f} s, "
-                 f"total {sum(all_t):.2f} s")
+                 f"total {sum(all_t):.2f} s; CPU: median {statistics.median(all_c):.3f} s, "
+                 f"max {max(all_c):.3f} s, total {sum(all_c):.2f} s")
     return "\n".join(lines)
 
 
