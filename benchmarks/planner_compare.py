@@ -4,9 +4,11 @@ Usage:
     .venv/bin/python benchmarks/planner_compare.py ARTIPLAN.jsonl BENCH.jsonl [--planner enhsp]
 
 ARTIPLAN.jsonl: written by ``benchmarks/planner_suite.py --jsonl``. BENCH.jsonl: ``artiplan bench``
-results (problems matched by ``model/file``, so two copies of the same suite seed match). Per problem both attempted: who solved it (a peer's plan counts if our validator accepts
-it), time ratio, and plan quality where both solved: makespan and number of actions. Our trailing
-no-op ``observe`` is not counted as an action (it plays the role of ENHSP's ``@PlanEND``).
+results (problems matched by ``model/file``, so two copies of the same suite seed match).
+Per problem both attempted: who solved it (a peer's plan counts if our validator accepts it),
+time ratio (our CPU seconds in-process against the peer's CPU seconds), and plan quality where
+both solved: makespan and number of actions. Our trailing no-op ``observe`` is not counted as an
+action (it plays the role of ENHSP's ``@PlanEND``).
 """
 
 from __future__ import annotations
