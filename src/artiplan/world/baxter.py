@@ -6,14 +6,16 @@ by its torque motors (robosuite's limits: 50/100/50/50/15/15/15 N m): joint-spac
 inverse-kinematics solution (damped least squares on ``mj_jacBody``) plus the bias forces
 (gravity, Coriolis). A grasp welds the hand body to the link at their current relative pose.
 
-Limits of this implementation (honest): no fingers (the weld stands in for the gripper); the
-arm *jumps* to the grasp pose (its IK solution is written into the state: approach and retreat
-motions are not simulated); arm collisions are off (no collision avoidance).
+Limits of this implementation (honest): the fingers close for show, the weld holds the link;
+by default an arm *jumps* to its grasp (its IK solution is written into the state); with
+``approach_s`` > 0 it moves there in simulated time, and the last few millimetres still jump;
+retreats are not simulated; arm collisions are off (no collision avoidance).
 """
 
 from __future__ import annotations
 
 import importlib.util
+from collections.abc import Callable
 from pathlib import Path
 
 import mujoco
@@ -33,6 +35,10 @@ PREFIX = "baxter_"
 HOME = (0.0, -0.55, 0.0, 1.2, 0.0, 0.9, 0.0)
 #: A grasp whose IK solution misses the grasp point by more than this [m] is refused.
 REACH_TOLERANCE = 0.01
+#: Interval [s] between joint-target updates of an approach motion.
+APPROACH_DT = 0.02
+#: Time [s] the arms get to settle on their grasps after an approach.
+APPROACH_SETTLE_S = 0.2
 #: Pull of the IK's null-space term toward mid-range joint angles [rad per iteration].
 NULLSPACE_GAIN = 0.05
 #: The same while tracking, called every 2 ms step: small, or the arm's self-motion outruns
@@ -82,7 +88,10 @@ def attach_baxter(spec: mujoco.MjSpec, obj: ArticulatedObject) -> None:
         if g.group == 0:  # robosuite's collision shapes: keep them out of the images
             g.group = 3
     for b in robot.bodies:
-        b.gravcomp = 0.0
+        # Baxter's shoulder springs and controller carry the arm's own weight: model that as
+        # MuJoCo's passive gravity compensation, so the motors' limits are left for motion
+        # and the object (without it s1 needs ~90 of its 100 N m just to hold the arm out).
+        b.gravcomp = 1.0
     spec.worldbody.add_geom(
         name="baxter_pedestal",
         type=mujoco.mjtGeom.mjGEOM_CYLINDER,
@@ -112,10 +121,38 @@ class BaxterHands(Hands):
     #: kp 1, ki 10 tracked 11 of 12 random 4-link rotations; kp 2, ki 40 oscillates).
     servo_gains = ServoGains(kp=1.0, ki=10.0)
 
-    def __init__(self, kp_scale: float = 30.0, damping_ratio: float = 1.0) -> None:
+    def __init__(
+        self, kp_scale: float = 30.0, damping_ratio: float = 1.0, approach_s: float = 0.0
+    ) -> None:
+        """``kp_scale``: joint stiffness [N m/rad] per N m of motor limit; ``approach_s``: when
+        > 0, the arms move to their grasps in this many simulated seconds (gravity acting)
+        instead of jumping there."""
         super().__init__()
         self.kp_scale = kp_scale
         self.damping_ratio = damping_ratio
+        self.approach_s = approach_s
+
+    def approach(self, pairs: list[tuple[str, str]], advance: Callable[[float], None]) -> None:
+        """Move each (hand, link) arm to its grasp in ``approach_s`` seconds of simulation
+        (joint-space, smooth), advancing the world with ``advance(dt)``; the final grasp
+        corrects what the falling links moved meanwhile."""
+        if self.approach_s <= 0:
+            return
+        starts = {h: self.data.qpos[self._q[h]].copy() for h, _ in pairs}
+        goals = {h: self._best_grasp(h, link)[0] for h, link in pairs}
+        n = max(1, int(round(self.approach_s / APPROACH_DT)))
+        dt = self.approach_s / n
+        for i in range(1, n + 1):
+            x = i / n
+            s = x * x * (3.0 - 2.0 * x)  # smoothstep: start and stop at rest
+            ds = 6.0 * x * (1.0 - x) / self.approach_s  # its rate [1/s]
+            for h, _ in pairs:
+                self._target_q[h] = starts[h] + s * (goals[h] - starts[h])
+                self._target_qd[h] = ds * (goals[h] - starts[h])
+            advance(dt)
+        for h, _ in pairs:
+            self._target_qd[h] = np.zeros(len(ARM_JOINTS))
+        advance(APPROACH_SETTLE_S)
 
     def extend_spec(self, spec: mujoco.MjSpec, obj: ArticulatedObject) -> None:
         attach_baxter(spec, obj)
@@ -153,14 +190,25 @@ class BaxterHands(Hands):
             data.qpos[self._q[h]] = sign * np.array(HOME)
         self._target_q = {h: data.qpos[self._q[h]].copy() for h in self.names}
         mujoco.mj_forward(model, data)
-        # Velocity feedback as joint damping: the implicit integrator keeps it stable where an
-        # explicit D term on light wrist joints would not be. kd = 2 zeta sqrt(kp * M_ii).
+        # Turn each torque motor into a PD servo inside MuJoCo: force = kp (ctrl - q) - kv qd,
+        # clipped to the motor's limit as a whole. Velocity feedback in the actuator is
+        # integrated implicitly (stable on light wrist joints); kv = 2 zeta sqrt(kp * M_ii).
         full = np.zeros((model.nv, model.nv))
         mujoco.mj_fullM(model, data, full)
+        self._kp, self._kv = {}, {}
         for h in self.names:
             inertia = np.diag(full)[self._v[h]]
             kp = self.kp_scale * self._limits[h]
-            model.dof_damping[self._v[h]] = 2.0 * self.damping_ratio * np.sqrt(kp * inertia)
+            kv = 2.0 * self.damping_ratio * np.sqrt(kp * inertia)
+            self._kp[h], self._kv[h] = kp, kv
+            for i, a in enumerate(self._act[h]):
+                model.actuator_gaintype[a] = int(mujoco.mjtGain.mjGAIN_FIXED)
+                model.actuator_biastype[a] = int(mujoco.mjtBias.mjBIAS_AFFINE)
+                model.actuator_gainprm[a, :3] = (kp[i], 0.0, 0.0)
+                model.actuator_biasprm[a, :3] = (0.0, -kp[i], -kv[i])
+                model.actuator_forcerange[a] = (-self._limits[h][i], self._limits[h][i])
+                model.actuator_forcelimited[a] = 1
+                model.actuator_ctrllimited[a] = 0
         self._grip_offset: dict[str, tuple[Vec, Vec]] = {}
         # Fingers (when the grippers are attached): position actuators, open or on the link.
         self._fingers: dict[str, list[tuple[int, float, float]]] = {h: [] for h in self.names}
@@ -177,6 +225,9 @@ class BaxterHands(Hands):
                 self._depth = float((r_h.T @ (data.xpos[eef] - data.xpos[self._hand[h]]))[2])
         self._held = {h: None for h in self.names}
         self.last_torque = {h: np.zeros(7) for h in self.names}
+        self._target_qd = {h: np.zeros(len(ARM_JOINTS)) for h in self.names}
+        #: How far [m] each hand jumped at its last grasp (0 after a perfect approach).
+        self.last_jump_m = {h: 0.0 for h in self.names}
 
     # -- grasping ------------------------------------------------------------------------
     def assign(self, hold_link: str, rotate_link: str) -> tuple[str, str]:
@@ -221,15 +272,17 @@ class BaxterHands(Hands):
     def _best_grasp(self, hand: str, link: str) -> tuple[Vec, Vec, float]:
         """(joint angles, IK target position, miss [m]) of the best candidate grasp."""
         best: tuple[Vec, Vec, float] | None = None
+        best_score = np.inf
+        q_now = self.data.qpos[self._q[hand]].copy()
         for pos, quat in self.grasp_poses(hand, link):
             q = self.solve_ik(hand, pos, quat, iterations=150)
             miss = self._ik_miss(hand, pos, quat)
-            room = np.minimum(q - self._lo[hand], self._hi[hand] - q).min()
-            miss += 0.05 * max(0.0, LIMIT_MARGIN - float(room))
-            if best is None or miss < best[2]:
-                best = (q, pos, miss)
-            if miss < 1e-3 and room > LIMIT_MARGIN:
-                break
+            room = float(np.minimum(q - self._lo[hand], self._hi[hand] - q).min())
+            # Prefer reachable, away from limits, then close to where the arm is now.
+            score = miss + 0.05 * max(0.0, LIMIT_MARGIN - room)
+            score += 0.002 * float(np.linalg.norm(q - q_now))
+            if score < best_score:
+                best, best_score = (q, pos, miss), score
         assert best is not None
         return best
 
@@ -240,12 +293,15 @@ class BaxterHands(Hands):
         q, pos, miss = self._best_grasp(hand, link)
         if miss > REACH_TOLERANCE:
             raise OutOfReachError(f"Baxter's {hand} hand cannot reach {link} ({miss:.3f} m short)")
-        # The arm jumps to the grasp (approach not simulated), at rest.
+        # The arm jumps the rest of the way to the grasp (all of it without an approach).
+        before = self.data.xpos[self._hand[hand]].copy()
         self.data.qpos[self._q[hand]] = q
         self.data.qvel[self._v[hand]] = 0.0
         self._target_q[hand] = q
         mujoco.mj_forward(self.model, self.data)
         hb, lb = self._hand[hand], self.model.body(link).id
+        self.last_jump_m[hand] = float(np.linalg.norm(self.data.xpos[hb] - before))
+        self._target_qd[hand] = np.zeros(len(ARM_JOINTS))
         # Weld relative pose: the link's pose in the hand's frame, as it is now.
         r_h = self.data.xmat[hb].reshape(3, 3)
         rel_pos = r_h.T @ (self.data.xpos[lb] - self.data.xpos[hb])
@@ -330,14 +386,16 @@ class BaxterHands(Hands):
         return d_pos + 0.1 * d_rot
 
     def control(self, dt: float) -> None:
-        """Joint PD toward the IK targets plus bias forces, clipped to the motor limits."""
+        """Servo set-points: the IK targets plus feed-forward; the motors' PD runs inside
+        MuJoCo and their force is clipped to Baxter's limits."""
         d = self.data
         for h in self.names:
-            qa, va, act = self._q[h], self._v[h], self._act[h]
-            kp = self.kp_scale * self._limits[h]
-            tau = d.qfrc_bias[va] + kp * (self._target_q[h] - d.qpos[qa])
-            tau = np.clip(tau, -self._limits[h], self._limits[h])
-            d.ctrl[act] = tau
-            self.last_torque[h] = tau
+            va, act = self._v[h], self._act[h]
+            kp, kv = self._kp[h], self._kv[h]
+            # Feed-forward (bias forces the gravity compensation leaves, desired velocity)
+            # folded into the servo's set-point.
+            ff = d.qfrc_bias[va] - d.qfrc_gravcomp[va] + kv * self._target_qd[h]
+            d.ctrl[act] = self._target_q[h] + ff / kp
+            self.last_torque[h] = d.actuator_force[act].copy()
             for aid, open_, closed in self._fingers[h]:
                 d.ctrl[aid] = closed if self._held[h] is not None else open_

@@ -213,9 +213,13 @@ class World:
             raise ValueError(f"{rotate_link} is not the tip-ward neighbour of {hold_link}")
         if direction not in (1, -1):
             raise ValueError("direction must be +1 (increase) or -1 (decrease)")
-        conf = self.true_configuration(reference)
         self.stop(release=True)
         hold_hand, rot_hand = self.hands.assign(hold_link, rotate_link)
+        approach = getattr(self.hands, "approach", None)
+        if approach is not None:  # arms that take time to reach (the world runs meanwhile)
+            pairs = [(hold_hand, hold_link)] if k > 1 else []
+            approach([*pairs, (rot_hand, rotate_link)], self.step)
+        conf = self.true_configuration(reference)
         if k > 1:  # L1 is clamped already
             self._grip(hold_hand, hold_link)
         self._grip(rot_hand, rotate_link)
