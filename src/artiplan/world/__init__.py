@@ -35,8 +35,10 @@ def make_world(
     hands: str = "virtual",
     seed: int = 0,
     perception: PerceptionConfig | None = None,
+    approach_s: float = 0.0,
 ) -> World:
-    """A world with named settings: ``preset`` stiff|loose, ``hands`` virtual|baxter."""
+    """A world with named settings: ``preset`` stiff|loose, ``hands`` virtual|baxter
+    (``approach_s`` > 0: Baxter's arms move to each grasp in that many simulated seconds)."""
     from artiplan.world.presets import preset as get_preset
 
     config = WorldConfig(

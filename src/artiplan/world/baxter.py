@@ -65,9 +65,12 @@ def baxter_xml_path() -> Path:
 
 
 def baxter_layout(obj: ArticulatedObject) -> SceneLayout:
-    """The object in front of Baxter, its fixture a little above shoulder height."""
+    """The object in front of Baxter, its fixture a little above shoulder height (higher for
+    chains longer than 6 links, so they hang free of the floor; Baxter reaches only the upper
+    links of those: use virtual hands)."""
+    height = max(1.12, obj.n_links * obj.link_length + 0.15)
     return SceneLayout(
-        anchor=(0.62, 0.0, 1.12), table_top=0.3, virtual_hands=False, fixture_arm=(0.4, 0.0, 0.0)
+        anchor=(0.62, 0.0, height), table_top=0.3, virtual_hands=False, fixture_arm=(0.4, 0.0, 0.0)
     )
 
 
