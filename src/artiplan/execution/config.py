@@ -60,6 +60,9 @@ class LoopConfig:
             a link into its window are the brittle ones).
         fallback_after: Also switch to the fallback model from this many re-plans on, whatever
             their reasons (a model the physics keeps contradicting is not worth re-using).
+        use_ontology: Go through the world's OWL knowledge base: each re-plan's percept is
+            recorded in it and the initial state (and the target) read back by a query, as the
+            paper's architecture does (False: straight from the percept).
         monitor_tip_links: Also monitor links tip-ward of every goal link. They cannot move a
             goal link in the model, and the model mispredicts carried links, so by default
             their errors are logged but do not trigger re-plans.
@@ -81,6 +84,7 @@ class LoopConfig:
     max_time: float = 600.0
     fallback_model: str | None = "ng"
     fallback_after: int = 2
+    use_ontology: bool = True
     monitor_tip_links: bool = False
 
     def __post_init__(self) -> None:

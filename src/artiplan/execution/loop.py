@@ -46,6 +46,15 @@ class ClosedLoop:
         self.progress = progress or (lambda _line: None)
         self.observer = observer or (lambda _w, _k, _l: None)
         enc = config.encoding
+        #: The OWL knowledge base (percepts in, initial state and target out), if used.
+        self.kb: Any = None
+        if config.use_ontology:
+            from artiplan.world.ontology import KnowledgeBase
+
+            self.kb = KnowledgeBase(self.obj)
+            self.kb.set_goal(target, config.goal_style, seed)
+            target, _, _ = self.kb.target()
+            self.target = target
         # Goals on canonical covers, like the problems (see execution.problem.canonical).
         self.goal = make_goal(self.obj, canonical(target), config.goal_style, seed,
                               planes=enc.planes, tolerance=config.plan_tolerance_deg)
@@ -108,9 +117,18 @@ class ClosedLoop:
             and self.world.time < self.config.max_time
 
     # -- planning -------------------------------------------------------------------------
+    def _perceive_for_planning(self) -> Configuration:
+        """Perceive; through the knowledge base when configured (percept in, query out)."""
+        percept = self.world.perceive()
+        if self.kb is None:
+            return percept.configuration
+        self.kb.record(percept)
+        conf, _ = self.kb.latest_configuration(None)
+        return conf
+
     def _plan(self, reason: str) -> Prediction | None:
         """Perceive, build the problem, plan; log it. None when no plan was found."""
-        start = canonical(self.world.perceive().configuration)
+        start = canonical(self._perceive_for_planning())
         problem = build_problem(self.obj, start, self.target, self.encoding, self.goal)
         t = time.perf_counter()
         result = plan(self.domain, problem, time_limit=self.config.plan_time_limit)
