@@ -85,13 +85,20 @@ def calibrate(make: Callable[..., World], obj: ArticulatedObject, *, preset: str
 
 
 def measure_reach_time(world: World) -> float | None:
-    """Seconds the world's hands need between a release and the next grasp, if they say.
+    """Seconds the world's hands need between a release and the next grasp, or None.
 
-    Hands that move arms (Baxter) expose ``reach_time(world) -> float``; virtual hands grasp
-    at once and have none (None: the encodings keep the paper's instantaneous grasps).
+    Hands may say so themselves (``reach_time``, a number or ``reach_time(world)``); Baxter
+    arms that move to their grasps in simulated time (``approach_s`` > 0) need that plus their
+    settling time. Virtual hands, and Baxter arms that jump to their grasps (the default),
+    grasp at once: None, the paper's instantaneous grasps.
     """
     measure = getattr(world.hands, "reach_time", None)
-    if measure is None:
+    if measure is not None:
+        value = measure(world) if callable(measure) else measure
+        return float(value) if value is not None else None
+    approach = float(getattr(world.hands, "approach_s", 0.0) or 0.0)
+    if approach <= 0.0:
         return None
-    value = measure(world) if callable(measure) else measure
-    return float(value) if value is not None else None
+    from artiplan.world.baxter import APPROACH_SETTLE_S
+
+    return approach + APPROACH_SETTLE_S
