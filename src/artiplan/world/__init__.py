@@ -53,6 +53,6 @@ def make_world(
             obj,
             conf,
             WorldConfig(config.physics, config.perception, seed, layout=baxter_layout(obj)),
-            BaxterHands(),
+            BaxterHands(approach_s=approach_s),
         )
     raise ValueError(f"unknown hands {hands!r}; valid: virtual, baxter")
