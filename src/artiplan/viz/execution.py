@@ -106,8 +106,10 @@ class FrameRecorder:
         reach = world.obj.n_links * world.obj.link_length
         self.cameras: dict[str, Any] = {}
         centre = 0.5 * (np.asarray(world.base_position) + world.link_centres().mean(axis=0))
+        # Baxter stands behind the object (+x faces it): look at it from the front.
+        side = 180.0 if world.hands.kind == "baxter" else 135.0
         for name, azimuth, elevation, dist in (("overhead", 90.0, -89.9, 2.2),
-                                               ("perspective", 135.0, -25.0, 2.6)):
+                                               ("perspective", side, -25.0, 2.6)):
             cam = mujoco.MjvCamera()
             cam.type = mujoco.mjtCamera.mjCAMERA_FREE
             cam.lookat[:] = centre
