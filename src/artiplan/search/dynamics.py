@@ -18,7 +18,6 @@ Rules (VAL's, as the planner needs them):
 from __future__ import annotations
 
 import math
-from collections.abc import Callable, Iterable
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -392,8 +391,3 @@ def _candidates(
         if facts & bit:
             out.extend(ids)
     return out
-
-
-def holds_all(conds: Iterable[Callable[[int, Values], bool]], facts: int, values: Values) -> bool:
-    """True if every condition holds."""
-    return all(c(facts, values) for c in conds)

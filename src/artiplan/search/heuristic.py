@@ -29,7 +29,6 @@ from artiplan.search.compiled import (
     CondFn,
     Linear,
     compile_condition,
-    fact_literals,
     linearize,
     written_fluents,
 )
@@ -448,11 +447,3 @@ class RateHeuristic:
                 preferred.add(a)
             else:
                 self._relaxed_plan(self.pre_lits[a], costs, plan, preferred)
-
-
-def literal_lits(cond: Condition, n_facts: int) -> tuple[int, ...]:
-    """Fact literals of a condition's top-level conjunction (positive i, negative n + i)."""
-    req, forb = fact_literals(cond) or (0, 0)
-    return tuple(i for i in range(n_facts) if req >> i & 1) + tuple(
-        n_facts + i for i in range(n_facts) if forb >> i & 1
-    )
