@@ -188,7 +188,7 @@ class World:
 
     def run_until(self, t: float) -> None:
         """Advance the simulation until time ``t`` [s] (to the nearest physics step)."""
-        if t > self.time:
+        if t - self.time >= 0.5 * self.model.opt.timestep:
             self.step(t - self.time)
 
     # -- actions --------------------------------------------------------------------------
