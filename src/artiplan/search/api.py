@@ -128,10 +128,11 @@ def plan_task(
     return result
 
 
-#: Restarts (time weight, expansion budget per goal conjunct): greedy search is fast when its
-#: heuristic fits and lost when it does not; another weighting often fits. Budgets count
-#: expansions, not seconds, so a run is the same on any machine. The last one is unbounded.
-SCHEDULE = ((None, 20), (0.3, 40), (1.0, 80), (0.03, 160), (None, None))
+#: Restarts (time weight, damage cost, expansion budget per goal conjunct): greedy search is
+#: fast when its heuristic fits and lost when it does not; another weighting often fits. Budgets
+#: count expansions, not seconds, so a run is the same on any machine. The last is unbounded.
+SCHEDULE = ((None, 2.0, 20), (None, 5.0, 40), (0.3, 2.0, 40), (1.0, 2.0, 80), (0.03, 2.0, 160),
+            (None, 2.0, None))
 
 
 def _plan(task: Task, limits: Limits, stats: dict[str, Any], options: dict[str, Any]) -> PlanResult:
@@ -167,9 +168,10 @@ def _plan(task: Task, limits: Limits, stats: dict[str, Any], options: dict[str, 
     heuristic_s = 0.0
     outcome = None
     try:
-        for attempt, (weight, per_goal) in enumerate(SCHEDULE, 1):
-            heur = RateHeuristic(ct, HeuristicConfig(time_weight=weight or default_weight),
-                                 dyn.active)
+        for attempt, (weight, damage, per_goal) in enumerate(SCHEDULE, 1):
+            heur = RateHeuristic(
+                ct, HeuristicConfig(time_weight=weight or default_weight, damage_cost=damage),
+                dyn.active)
             budget = float("inf") if per_goal is None else per_goal * max(5, len(heur.groups))
             search = Search(ct, dyn, heur, config, limits.check, accept)
             stats["attempts"] = attempt
