@@ -85,3 +85,12 @@ def test_suite_index_as_artiplan_suite_writes_it(tmp_path: Path) -> None:
     assert Path(problems[0].problem).is_absolute()
     assert [p.size for p in select(problems, models=["ucm"])] == [3]
     assert [p.size for p in select(problems, sizes=[4])] == [4]
+
+
+def test_an_empty_plan_is_validated_too() -> None:
+    # Waiting alone (an empty plan with an end) is a plan: Plan has __len__, so it is falsy.
+    empty = Plan((), end=1.0)
+    verdict = check_plan(DOMAIN, PROBLEM, empty)
+    assert verdict.valid is False  # nothing moves: the goal does not hold
+    row = make_row(_job(), BackendResult(PlanStatus.SOLVED, empty, 1.0, 1.0, 10.0), verdict)
+    assert row["status"] == "invalid" and row["n_actions"] == 0 and row["makespan"] == 1.0

@@ -91,7 +91,8 @@ def run_job(job: Job) -> dict[str, Any]:
     except Exception as exc:  # one broken run must not end a sweep of hundreds
         message = f"internal error: {type(exc).__name__}: {exc}"
         result = BackendResult(PlanStatus.ERROR, None, 0.0, 0.0, 0.0, message=message)
-    verdict = check_plan(problem.domain, problem.problem, result.plan) if result.plan else None
+    plan = result.plan  # an empty plan (just wait) is a plan too
+    verdict = check_plan(problem.domain, problem.problem, plan) if plan is not None else None
     return make_row(job, result, verdict)
 
 
@@ -99,7 +100,7 @@ def make_row(job: Job, result: BackendResult, verdict: Verdict | None) -> dict[s
     """One JSON-ready result row (layout ``SCHEMA``)."""
     problem = job.problem
     plan = result.plan
-    actions = [a for a in plan.actions if a.name != "observe"] if plan else []
+    actions = [a for a in plan.actions if a.name != "observe"] if plan is not None else []
     row: dict[str, Any] = {
         "schema": SCHEMA,
         "planner": job.planner,
@@ -114,8 +115,8 @@ def make_row(job: Job, result: BackendResult, verdict: Verdict | None) -> dict[s
         "cpu_s": round(result.cpu_s, 4),
         "wall_s": round(result.wall_s, 4),
         "peak_mb": round(result.peak_mb, 1),
-        "makespan": round(plan.makespan, 6) if plan else None,
-        "n_actions": len(actions) if plan else None,
+        "makespan": round(plan.makespan, 6) if plan is not None else None,
+        "n_actions": len(actions) if plan is not None else None,
         "valid": verdict.valid if verdict else None,
         "validation": verdict.reason if verdict else "",
         "message": result.message[:500],
