@@ -174,6 +174,9 @@ class ClosedLoop:
         actions = sorted(plan_.actions, key=lambda a: a.time)
         end = pred.t0 + max(plan_.makespan, plan_.end or 0.0)
         index, i = len(self.log.plans) - 1, 0
+        # The world advances in physics steps (and not at all for less than half a step): a
+        # time is reached when it is within half a step.
+        tol = 0.5 * float(self.world.model.opt.timestep) + _EPS
         next_mon = self.world.time
         while True:
             t_act = pred.t0 + actions[i].time if i < len(actions) else end
@@ -181,23 +184,23 @@ class ClosedLoop:
             t_next = min(t_act, next_mon, t_int)
             self.world.run_until(t_next)
             now = self.world.time
-            if t_int <= now + _EPS:
+            if t_int <= now + tol:
                 self._intervene(self.pending.pop(0), index)
                 next_mon = now  # look again at once
                 continue
-            happening = i < len(actions) and t_act <= now + _EPS
+            happening = i < len(actions) and t_act <= now + tol
             reason = self._observe(pred, index, "happening" if happening else "monitor")
             if reason is not None and self._may_replan():
                 return reason
             if happening:
-                while i < len(actions) and pred.t0 + actions[i].time <= now + _EPS:
+                while i < len(actions) and pred.t0 + actions[i].time <= now + tol:
                     failure = self._dispatch(actions[i], pred, index)
                     i += 1
                     if failure is not None and self._may_replan():
                         return failure
-            if i >= len(actions) and now >= end - _EPS:
+            if i >= len(actions) and now >= end - tol:
                 return None
-            if t_next >= next_mon - _EPS:
+            if t_next >= next_mon - tol:
                 next_mon = now + self.config.monitor_dt
             if now > self.config.max_time:
                 return None
