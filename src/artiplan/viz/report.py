@@ -73,10 +73,10 @@ def plot_par10(
     for ax in axes[0]:
         for handle, label in zip(*ax.get_legend_handles_labels(), strict=True):
             handles.setdefault(label, handle)
-    fig.suptitle(f"PAR10 per size, CPU-time limit {limit:g} s")
-    fig.tight_layout(rect=(0, 0, 1, 0.93))
-    fig.legend(list(handles.values()), list(handles), loc="upper right", fontsize=8,
-               ncol=min(len(handles), 6))
+    fig.suptitle(f"PAR10 per size, CPU-time limit {limit:g} s", y=0.99)
+    fig.tight_layout(rect=(0, 0, 1, 0.86))
+    fig.legend(list(handles.values()), list(handles), loc="upper center", fontsize=8,
+               ncol=min(len(handles), 6), bbox_to_anchor=(0.5, 0.93), frameon=False)
     paths = _save(fig, base)
     plt.close(fig)
     return paths
