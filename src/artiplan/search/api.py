@@ -20,6 +20,7 @@ from artiplan.search.compiled import CompiledTask, compile_task
 from artiplan.search.dynamics import Dynamics, DynamicsConfig, ZenoError
 from artiplan.search.engine import Search, SearchConfig, SearchOutcome, initial_node
 from artiplan.search.heuristic import HeuristicConfig, RateHeuristic
+from artiplan.search.improve import improve
 from artiplan.search.limits import LimitReached, Limits
 from artiplan.search.reachability import prove_unsolvable
 from artiplan.semantics.plan import Plan, TimedAction, TimedEvent
@@ -79,6 +80,7 @@ OPTIONS = {
     "value_precision": "decimals of values in duplicate detection (default 6)",
     "fallback_step": "step [s] for non-polynomial dynamics (default 0.1)",
     "validate": "check the plan with artiplan.semantics.validate (default True)",
+    "improve": "search on for a shorter plan within an expansion budget (default True)",
 }
 
 
@@ -192,10 +194,35 @@ def _plan(task: Task, limits: Limits, stats: dict[str, Any], options: dict[str, 
         return PlanResult(PlanStatus.NO_PLAN, message="search space exhausted without a plan "
                           "(not a proof: waits stop only at critical times)")
     found, trajectory = checked[0]
+    if options.get("improve", True):
+        found, trajectory = _improve(task, ct, dyn, config, limits, found, trajectory, stats,
+                                     options)
     stats["plan_length"] = len(found.actions)
     stats["makespan"] = found.makespan
     stats["validated"] = bool(options.get("validate", True))
     return PlanResult(PlanStatus.SOLVED, found, trajectory)
+
+
+def _improve(
+    task: Task, ct: CompiledTask, dyn: Dynamics, config: SearchConfig, limits: Limits,
+    first: Plan, trajectory: Any, stats: dict[str, Any], options: dict[str, Any],
+) -> tuple[Plan, Any]:
+    """The anytime phase (:mod:`artiplan.search.improve`): a better validated plan, or ``first``."""
+
+    def check(found: Plan) -> Any:
+        return _validate(task, found, stats) if options.get("validate", True) else None
+
+    t = time.perf_counter()
+    validate_before = stats.get("validate_s", 0.0)
+    best, report, extra = improve(ct, dyn, config, limits, first, int(stats.get("expanded", 0)),
+                                  lambda outcome: extract_plan(ct, outcome), check)
+    stats.update(extra)
+    stats["improve_s"] = time.perf_counter() - t - (stats.get("validate_s", 0.0) - validate_before)
+    stats["first_makespan"] = first.makespan
+    stats["first_length"] = len(first.actions)
+    if best is first:
+        return first, trajectory
+    return best, None if report is None else report.trajectory
 
 
 def _validate(task: Task, found: Plan, stats: dict[str, Any]) -> Any:

@@ -64,6 +64,7 @@ class Node:
     by_action: bool
     active: tuple[int, ...] = ()  # processes running from ``time`` on
     after: int = 0  # events[after:] were triggered by the node's action
+    n_actions: int = 0  # actions on the path from the initial node
 
 
 @dataclass
@@ -84,17 +85,19 @@ class Search:
         self, ct: CompiledTask, dyn: Dynamics, heuristic: RateHeuristic, config: SearchConfig,
         check_limits: Callable[[], None],
         accept: Callable[[SearchOutcome], bool] = lambda outcome: True,
+        prune: Callable[[Node], bool] | None = None,
     ) -> None:
         self.ct, self.dyn, self.h, self.config = ct, dyn, heuristic, config
         self.check_limits = check_limits
         self.accept = accept
+        self.prune = prune  # nodes it returns True for are dropped (the improvement's bound)
         self.noops = [a.index for a in ct.actions if a.noop]
         self.nodes: list[Node] = []
         self.seen: set[tuple[int, tuple[int, ...], tuple[float | None, ...]]] = set()
         self.counter = itertools.count()
         self.stats: dict[str, float] = dict.fromkeys(
             ("expanded", "generated", "evaluated", "duplicates", "undo_pruned", "invalid",
-             "rejected"), 0)
+             "rejected", "pruned"), 0)
 
     # ------------------------------------------------------------------ successors
     def _key(self, node: Node) -> tuple[int, tuple[int, ...], tuple[float | None, ...]]:
@@ -130,7 +133,8 @@ class Search:
                 self.stats["undo_pruned"] += 1
                 return None
             ready = round(t + self.config.epsilon, 9)
-            return Node(t, facts, values, ready, pi, op, log, True, active, after)
+            return Node(t, facts, values, ready, pi, op, log, True, active, after,
+                        parent.n_actions + 1)
         if op[0] == "w":
             res = dyn.wait_next(parent.time, parent.facts, parent.values, log, parent.active)
         else:
@@ -145,7 +149,8 @@ class Search:
         if res is None:
             return None
         t, facts, values, active = res
-        return Node(t, facts, values, parent.ready, pi, op, log, False, active)
+        return Node(t, facts, values, parent.ready, pi, op, log, False, active,
+                    n_actions=parent.n_actions)
 
     def closing(self, node: Node) -> tuple[float, int] | None | bool:
         """How a goal node ends the plan: True if its action does, (time, no-op) or None."""
@@ -194,6 +199,9 @@ class Search:
                 pop_preferred = not pop_preferred
             node = initial if pi < 0 else self.successor(self.nodes[pi], pi, op)
             if node is None:
+                continue
+            if self.prune is not None and self.prune(node):
+                self.stats["pruned"] += 1
                 continue
             key = self._key(node)
             if key in self.seen:

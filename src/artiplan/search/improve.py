@@ -1,0 +1,120 @@
+"""Anytime improvement of a first plan: bounded re-searches that keep only better plans.
+
+The first search stops at its first valid plan. This phase searches again, with other heuristic
+weightings (time counts more), and prunes every node that cannot beat the best plan so far: a
+node at or past the best makespan [s] that has no fewer actions. A goal found this way is kept
+if it is better (lower makespan, then fewer actions); the search goes on with the tighter bound.
+Budgets count expansions, not seconds, so the same input gives the same plan on every machine;
+the time limit only cuts the phase short (the best plan so far is kept). The best candidate the
+validator accepts is returned; if none is accepted, the first plan stays.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import Any
+
+from artiplan.search.compiled import CompiledTask
+from artiplan.search.dynamics import Dynamics, ZenoError
+from artiplan.search.engine import Node, Search, SearchConfig, SearchOutcome, initial_node
+from artiplan.search.heuristic import HeuristicConfig, RateHeuristic
+from artiplan.search.limits import LimitReached, Limits
+from artiplan.semantics.plan import Plan
+
+#: Makespans closer than this [s] count as equal (VAL's tolerance is 0.001 s).
+TIE = 1e-6
+
+
+@dataclass(frozen=True)
+class ImproveConfig:
+    """Budget and weightings of the improvement phase.
+
+    Attributes:
+        factor: Expansion budget as a multiple of the first search's expansions.
+        minimum: Expansion budget at least this (first searches often need only a few).
+        maximum: Expansion budget at most this.
+        weights: (time weight [actions/s], damage cost) of the successive re-searches.
+        time_share: The phase stops once this share of the time limit has passed.
+        gain: A plan with more actions must shorten the makespan by at least this share (a few
+            extra actions for milliseconds is not a better plan).
+    """
+
+    factor: float = 3.0
+    minimum: int = 60
+    maximum: int = 3000
+    weights: tuple[tuple[float, float], ...] = ((1.0, 2.0), (0.3, 2.0), (3.0, 2.0))
+    time_share: float = 0.9
+    gain: float = 0.05
+
+
+def better(mk: float, n: int, best_mk: float, best_n: int, gain: float = 0.05) -> bool:
+    """Lower makespan [s] first, then fewer actions; more actions only for a ``gain`` share."""
+    if n > best_n:
+        return mk < best_mk * (1.0 - gain) - TIE
+    return mk < best_mk - TIE or (mk <= best_mk + TIE and n < best_n)
+
+
+@dataclass
+class _Best:
+    makespan: float
+    n_actions: int
+
+
+def improve(
+    ct: CompiledTask, dyn: Dynamics, config: SearchConfig, limits: Limits, first: Plan,
+    first_expansions: int, extract: Callable[[SearchOutcome], Plan],
+    validate: Callable[[Plan], Any], settings: ImproveConfig = ImproveConfig(),
+) -> tuple[Plan, Any, dict[str, Any]]:
+    """Search for a plan better than ``first``; returns (plan, validator report or None, stats).
+
+    The report is None when ``first`` is kept (the caller validated it already).
+    ``validate(plan)`` returns an object with ``valid`` (and ``trajectory``), or None when
+    validation is off (candidates are then trusted, as the first plan was).
+    """
+    budget = int(min(settings.maximum, max(settings.minimum, settings.factor * first_expansions)))
+    best = _Best(first.makespan, len(first.actions))
+    candidates: list[Plan] = []
+    stats: dict[str, Any] = {"improve_budget": budget, "improve_expanded": 0}
+
+    def prune(node: Node) -> bool:
+        """No descendant can be better: times only grow, action counts too."""
+        if node.n_actions > best.n_actions:
+            return node.time >= best.makespan * (1.0 - settings.gain) - TIE
+        return node.time >= best.makespan - TIE and node.n_actions >= best.n_actions
+
+    def accept(outcome: SearchOutcome) -> bool:
+        found = extract(outcome)
+        if better(found.makespan, len(found.actions), best.makespan, best.n_actions,
+                  settings.gain):
+            best.makespan, best.n_actions = found.makespan, len(found.actions)
+            candidates.append(found)
+        return False  # search on, under the tighter bound
+
+    def check() -> None:
+        limits.check()
+        if limits.time_limit is not None and \
+                limits.elapsed() > settings.time_share * limits.time_limit:
+            raise LimitReached("time", "improvement stopped by the time limit")
+
+    try:
+        for weight, damage in settings.weights:
+            left = budget - stats["improve_expanded"]
+            if left <= 0:
+                break
+            heur = RateHeuristic(ct, HeuristicConfig(time_weight=weight, damage_cost=damage),
+                                 dyn.active)
+            search = Search(ct, dyn, heur, config, check, accept, prune)
+            try:
+                search.run(initial_node(ct, dyn), left)
+            finally:
+                stats["improve_expanded"] += int(search.stats["expanded"])
+    except (LimitReached, MemoryError, ZenoError):
+        stats["improve_cut"] = True
+    stats["improve_candidates"] = len(candidates)
+    for found in reversed(candidates):  # best first: usually one validation
+        report = validate(found)
+        if report is None or report.valid:
+            return found, report, stats
+        stats.setdefault("rejected_reasons", []).append(report.reason)
+    return first, None, stats
