@@ -6,7 +6,7 @@ import argparse
 from pathlib import Path
 
 from artiplan.errors import InputError
-from artiplan.model import ArticulatedObject, Configuration
+from artiplan.model import load_configuration
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -18,25 +18,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def load(path: Path) -> tuple[Configuration, ArticulatedObject]:
-    """Read a configuration file; bad files become :class:`InputError` (exit code 3)."""
-    from artiplan.model import load_configuration
-
-    try:
-        return load_configuration(path)
-    except FileNotFoundError:
-        raise InputError(f"{path}: no such file") from None
-    except (ValueError, TypeError) as exc:  # JSONDecodeError is a ValueError
-        raise InputError(f"{path}: {exc}") from None
-
-
 def run(args: argparse.Namespace) -> int:
     from artiplan.viz.draw import draw_configuration
 
-    conf, obj = load(args.config)
+    conf, obj = load_configuration(args.config)
     target = None
     if args.target is not None:
-        target, tobj = load(args.target)
+        target, tobj = load_configuration(args.target)
         if tobj.n_links != obj.n_links:
             raise InputError(f"{args.target}: {tobj.n_links} links, {args.config}: {obj.n_links}")
     path = draw_configuration(obj, conf, args.out, target=target, title=args.title)

@@ -9,7 +9,7 @@ from pathlib import Path
 from artiplan.encoding.goals import GOAL_STYLES
 from artiplan.encoding.options import MODELS
 from artiplan.errors import InputError, UsageError
-from artiplan.model import ArticulatedObject, Configuration
+from artiplan.model import ArticulatedObject, load_configuration
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -36,17 +36,6 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     )
 
 
-def _load(path: Path) -> tuple[Configuration, ArticulatedObject]:
-    from artiplan.model import load_configuration
-
-    try:
-        return load_configuration(path)
-    except FileNotFoundError:
-        raise InputError(f"{path}: no such file") from None
-    except (ValueError, TypeError) as exc:  # JSONDecodeError is a ValueError
-        raise InputError(f"{path}: {exc}") from None
-
-
 def run(args: argparse.Namespace) -> int:
     from artiplan.encoding import EncodingOptions, domain_pddl, problem_pddl
     from artiplan.encoding.suite import random_pair
@@ -65,8 +54,8 @@ def run(args: argparse.Namespace) -> int:
     except ValueError as exc:
         raise UsageError(str(exc)) from None
     if args.init is not None:
-        init, obj = _load(args.init)
-        target, tobj = _load(args.target)
+        init, obj = load_configuration(args.init)
+        target, tobj = load_configuration(args.target)
         if tobj.n_links != obj.n_links:
             raise InputError(f"{args.target}: {tobj.n_links} links, {args.init}: {obj.n_links}")
     else:

@@ -10,7 +10,7 @@ import subprocess
 import sys
 from pathlib import Path
 
-from artiplan.errors import ExternalToolError, InputError, UsageError
+from artiplan.errors import ExternalToolError, UsageError
 
 CAMERAS = ("overhead", "side", "perspective")
 
@@ -99,10 +99,7 @@ def _snapshot(args: argparse.Namespace) -> int:
     from artiplan.world.render import colour_labels, depth_image
 
     if args.configuration:
-        try:
-            conf, obj = load_configuration(args.configuration)
-        except (OSError, ValueError, json.JSONDecodeError) as exc:
-            raise InputError(f"{args.configuration}: {exc}") from exc
+        conf, obj = load_configuration(args.configuration)
     else:
         if not 2 <= args.links <= 30:
             raise UsageError("--links must be between 2 and 30")

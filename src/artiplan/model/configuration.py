@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
+from artiplan.errors import InputError
 from artiplan.model.angles import wrap_deg
 from artiplan.model.obj import HORIZONTAL_PLANE, VERTICAL_PLANE, ArticulatedObject
 
@@ -34,9 +35,7 @@ class Configuration:
 
     def __post_init__(self) -> None:
         if len(self.theta) != len(self.gamma):
-            raise ValueError(
-                f"theta has {len(self.theta)} values but gamma has {len(self.gamma)}"
-            )
+            raise ValueError(f"theta has {len(self.theta)} values but gamma has {len(self.gamma)}")
         if len(self.theta) < 2:
             raise ValueError("a configuration needs at least 2 links")
 
@@ -121,16 +120,26 @@ class Configuration:
 
 
 def load_configuration(path: str | Path) -> tuple[Configuration, ArticulatedObject]:
-    """Read a configuration file and the object it describes (default object when absent)."""
-    d = json.loads(Path(path).read_text())
-    conf = Configuration.from_dict(d)
-    obj = (
-        ArticulatedObject.from_dict(d["object"])
-        if "object" in d
-        else ArticulatedObject(conf.n_links)
-    )
+    """Read a configuration file and the object it describes (default object when absent).
+
+    Raises:
+        InputError: The file is missing, is not JSON, or does not describe a configuration
+            (exit code 3 on the command line).
+    """
+    try:
+        d = json.loads(Path(path).read_text())
+        conf = Configuration.from_dict(d)
+        obj = (
+            ArticulatedObject.from_dict(d["object"])
+            if "object" in d
+            else ArticulatedObject(conf.n_links)
+        )
+    except FileNotFoundError:
+        raise InputError(f"{path}: no such file") from None
+    except (OSError, ValueError, TypeError) as exc:  # JSONDecodeError is a ValueError
+        raise InputError(f"{path}: {exc}") from None
     if obj.n_links != conf.n_links:
-        raise ValueError(f"{path}: object has {obj.n_links} links, configuration {conf.n_links}")
+        raise InputError(f"{path}: object has {obj.n_links} links, configuration {conf.n_links}")
     return conf, obj
 
 
