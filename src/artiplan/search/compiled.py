@@ -33,6 +33,7 @@ from artiplan.pddl.task import (
     Task,
     Truth,
 )
+from artiplan.semantics.expressions import expr_source as semantics_expr_source
 
 CondFn = Callable[[int, tuple[float, ...]], bool]
 EffectFn = Callable[[int, tuple[float, ...]], tuple[int, tuple[float, ...]]]
@@ -81,14 +82,8 @@ def fluents_of(expr: NumExpr) -> set[int]:
 
 
 def expr_source(expr: NumExpr) -> str:
-    """Python source of a numeric expression over ``V``."""
-    if isinstance(expr, Const):
-        return repr(float(expr.value))
-    if isinstance(expr, FluentRef):
-        return f"V[{expr.index}]"
-    if isinstance(expr, Neg):
-        return f"(-{expr_source(expr.operand)})"
-    return f"({expr_source(expr.left)} {expr.op} {expr_source(expr.right)})"
+    """Python source of a numeric expression over ``V`` (the compiled functions' argument)."""
+    return semantics_expr_source(expr, "V")
 
 
 @dataclass(frozen=True)
@@ -275,8 +270,16 @@ def _compile_op(i: int, op: GroundAction, comps: ComparisonTable) -> CompiledOp:
     pre, used = compile_condition(op.precondition, comps)
     lits = fact_literals(op.precondition) or (0, 0)
     return CompiledOp(
-        i, op.signature, op.name, op.args, pre, used, lits[0], lits[1],
-        compile_effect(op.effect, comps), is_noop(op),
+        i,
+        op.signature,
+        op.name,
+        op.args,
+        pre,
+        used,
+        lits[0],
+        lits[1],
+        compile_effect(op.effect, comps),
+        is_noop(op),
     )
 
 
@@ -321,8 +324,7 @@ def compile_task(task: Task) -> CompiledTask:
         pre, used = shared[cls]
         lits = fact_literals(p.precondition) or (0, 0)
         rates = tuple((ce.fluent, linearize(ce.rate), ce.rate) for ce in p.continuous)
-        processes.append(
-            CompiledProcess(i, p.signature, pre, used, lits[0], lits[1], rates, cls))
+        processes.append(CompiledProcess(i, p.signature, pre, used, lits[0], lits[1], rates, cls))
     goal, goal_comps = compile_condition(task.goal, comps)
     dynamic = frozenset().union(*(e.pre_comps for e in events), *(p.pre_comps for p in processes))
     watched = dynamic | goal_comps | frozenset().union(*(a.pre_comps for a in actions))

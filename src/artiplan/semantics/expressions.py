@@ -116,14 +116,15 @@ def holds(cond: Condition, state: State, tol: Tolerances = EXACT) -> bool:
 # -------------------------------------------------------------------------------- compiling
 
 
-def _expr_src(expr: NumExpr) -> str:
+def expr_source(expr: NumExpr, var: str = "v") -> str:
+    """Python source of a numeric expression over the sequence named ``var`` (for compiling)."""
     if isinstance(expr, Const):
         return repr(float(expr.value))
     if isinstance(expr, FluentRef):
-        return f"v[{expr.index}]"
+        return f"{var}[{expr.index}]"
     if isinstance(expr, Neg):
-        return f"(-{_expr_src(expr.operand)})"
-    return f"({_expr_src(expr.left)} {expr.op} {_expr_src(expr.right)})"
+        return f"(-{expr_source(expr.operand, var)})"
+    return f"({expr_source(expr.left, var)} {expr.op} {expr_source(expr.right, var)})"
 
 
 def _cond_src(cond: Condition, tol: Tolerances) -> str:
@@ -138,7 +139,7 @@ def _cond_src(cond: Condition, tol: Tolerances) -> str:
             return "True" if isinstance(cond, And) else "False"
         joiner = " and " if isinstance(cond, And) else " or "
         return "(" + joiner.join(_cond_src(p, tol) for p in cond.parts) + ")"
-    diff = f"({_expr_src(cond.left)} - {_expr_src(cond.right)})"
+    diff = f"({expr_source(cond.left)} - {expr_source(cond.right)})"
     bound = {">": -tol.strict_slack, "<": tol.strict_slack, ">=": -tol.eps, "<=": tol.eps}
     if cond.op == "=":
         return f"(abs{diff} <= {tol.eps!r})"
@@ -148,7 +149,7 @@ def _cond_src(cond: Condition, tol: Tolerances) -> str:
 def compile_expr(expr: NumExpr) -> ExprFn:
     """``expr`` as a fast function of the fluent values."""
     try:
-        return eval(f"lambda v: {_expr_src(expr)}", {})
+        return eval(f"lambda v: {expr_source(expr)}", {})
     except (RecursionError, SyntaxError, MemoryError):  # pathological depth: walk the tree
         return lambda v: evaluate(expr, v)
 
@@ -168,7 +169,7 @@ def compile_near(cond: Condition, zero_tol: float) -> ExprFn:
     if not comps:
         return lambda v: False
     terms = " or ".join(
-        f"abs({_expr_src(c.left)} - {_expr_src(c.right)}) <= {zero_tol!r}" for c in comps
+        f"abs({expr_source(c.left)} - {expr_source(c.right)}) <= {zero_tol!r}" for c in comps
     )
     try:
         return eval(f"lambda v: {terms}", {})
