@@ -40,7 +40,7 @@ class ArtiplanPlanner(Planner):
         if time_limit is not None:
             # The command limits wall time too; on a shared machine that would stop it before
             # its CPU time is used up. Give it our wall watchdog; the runner's CPU limit rules.
-            wall = Limits().wall_factor * time_limit + Limits().wall_slack
+            wall = Limits(time_limit=time_limit).wall_cap or time_limit
             cmd += ["--time-limit", f"{wall:g}"]
         if memory_limit is not None:
             cmd += ["--memory-limit", f"{memory_limit:g}"]

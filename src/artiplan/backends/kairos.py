@@ -59,7 +59,7 @@ class KairosPlanner(Planner):
         if time_limit is not None:
             # Kairos's --timeout is wall-clock time; on a shared machine it would stop the search
             # long before our CPU-time limit. Set it at our wall watchdog; the CPU limit rules.
-            wall = Limits().wall_factor * time_limit + Limits().wall_slack
+            wall = Limits(time_limit=time_limit).wall_cap or time_limit
             cmd += ["--timeout", str(math.ceil(wall))]
         if memory_limit is not None:
             cmd += ["--memory", str(int(memory_limit))]

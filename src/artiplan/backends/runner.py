@@ -57,6 +57,13 @@ class Limits:
     wall_slack: float = 30.0
     poll_interval: float = 0.05
 
+    @property
+    def wall_cap(self) -> float | None:
+        """When the wall-clock watchdog fires [s] (None without a time limit)."""
+        if self.time_limit is None:
+            return None
+        return self.wall_factor * self.time_limit + self.wall_slack
+
 
 @dataclass(frozen=True)
 class RunOutcome:
@@ -161,10 +168,7 @@ def _watch(
         ps = None
     peak = polled_cpu = 0.0
     hit: str | None = None
-    wall_cap = (
-        limits.wall_factor * limits.time_limit + limits.wall_slack
-        if limits.time_limit is not None else None
-    )
+    wall_cap = limits.wall_cap
     while True:
         pid, status, rusage = os.wait4(proc.pid, os.WNOHANG)
         if pid == proc.pid:
