@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import dataclasses
 
+from artiplan.pddl.task import TRUE, Task
 from artiplan.semantics.plan import Plan, TimedAction
 from artiplan.semantics.plan_io import parse_enhsp_output, parse_plan
 
@@ -56,3 +57,29 @@ def plan_from_ipc(text: str) -> tuple[Plan, int]:
 def plan_from_val(text: str) -> Plan:
     """A plan in VAL's format as artiplan writes it (no conversion needed)."""
     return parse_plan(text, "<artiplan plan>")
+
+
+def close_at_end(plan: Plan, task: Task) -> Plan:
+    """Make a peer's plan end where the peer says it ends, in a form VAL reads.
+
+    ENHSP and Kairos state an end time (``@PlanEND``) after the last action: the goal is reached
+    by waiting. VAL checks the goal at the last happening, so such a plan is closed with an
+    always-applicable no-op action of the task (the encodings' ``observe``) at that time. Plans
+    without a later end, or tasks without such an action, are returned unchanged.
+    """
+    last = max((a.time for a in plan.actions), default=0.0)
+    if plan.end is None or plan.end <= last + 1e-9:
+        return plan
+    noop = next(
+        (
+            a
+            for a in task.actions
+            if a.precondition == TRUE
+            and not (a.effect.add or a.effect.delete or a.effect.numeric or a.effect.conditional)
+        ),
+        None,
+    )
+    if noop is None:
+        return plan
+    close = TimedAction(max(plan.end, last + SEQUENCE_GAP), noop.name, noop.args)
+    return dataclasses.replace(plan, actions=(*plan.actions, close), end=None)

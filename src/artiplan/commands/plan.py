@@ -121,11 +121,14 @@ def _external(args: argparse.Namespace) -> int:
                      {"cpu_s": res.cpu_s, "wall_s": res.wall_s, "peak_mb": res.peak_mb})
     print(f"artiplan plan: {args.planner}: {status} (wall {res.wall_s:.2f} s)", file=sys.stderr)
     if res.plan is not None and status == "solved":
+        from artiplan.backends.convert import close_at_end
+        from artiplan.pddl import load_task
         from artiplan.semantics.plan_io import format_plan, write_plan
 
-        print(format_plan(res.plan), end="")
+        plan = close_at_end(res.plan, load_task(args.domain, args.problem))
+        print(format_plan(plan), end="")
         if args.out is not None:
-            write_plan(res.plan, args.out)
+            write_plan(plan, args.out)
         return int(ExitCode.OK)
     from artiplan.search.api import PlanStatus
 
