@@ -25,6 +25,8 @@ DEMO_SEED = 1
 #: The scripted human intervention of ``--intervene``: (link, plane, angle [deg], when as a
 #: fraction of the first plan's makespan).
 INTERVENTION = ("L3", "z-axis", 25.0, 0.3)
+#: Seconds Baxter's arms take to move to a grasp (simulated); the reach time is measured from it.
+APPROACH_S = 1.0
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
@@ -43,7 +45,13 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="goal style (default window: goal links within 5 deg)")
     parser.add_argument("--reach-time", type=float, default=None,
                         help="seconds between a release and the next grasp, modelled in PDDL+ "
-                             "(default: measured from the hands; virtual hands: none)")
+                             "(default: measured on the simulated Baxter; virtual hands or "
+                             "--no-approach: none)")
+    parser.add_argument("--approach", type=float, default=APPROACH_S,
+                        help=f"seconds Baxter's arms take to move to a grasp (default "
+                             f"{APPROACH_S:g}; the reach time is measured with it)")
+    parser.add_argument("--no-approach", action="store_true",
+                        help="Baxter's arms jump to their grasps (no reach time)")
     parser.add_argument("--no-animation", action="store_true",
                         help="skip camera frames (no OpenGL needed)")
 
@@ -53,6 +61,8 @@ def run(args: argparse.Namespace) -> int:
         raise UsageError("--links must be between 3 and 12")
     if args.reach_time is not None and args.reach_time < 0:
         raise UsageError("--reach-time must be >= 0")
+    if args.approach < 0:
+        raise UsageError("--approach must be >= 0")
     os.environ.setdefault("MUJOCO_GL", "egl")  # before MuJoCo is imported
     out: Path = args.out
     out.mkdir(parents=True, exist_ok=True)
@@ -103,7 +113,8 @@ def _make_world(obj: Any, init: Any, args: argparse.Namespace) -> tuple[Any, str
 
     if args.hands == "baxter":
         try:
-            return make_world(obj, init, preset=args.preset, hands="baxter", seed=args.seed), ""
+            return make_world(obj, init, preset=args.preset, hands="baxter", seed=args.seed,
+                              approach_s=_approach(args)), ""
         except (ImportError, ValueError, RuntimeError) as exc:
             note = ("!!! WARNING: Baxter arms are not available in this build "
                     f"({type(exc).__name__}: {exc}); running with VIRTUAL hands instead. !!!")
@@ -112,14 +123,22 @@ def _make_world(obj: Any, init: Any, args: argparse.Namespace) -> tuple[Any, str
     return make_world(obj, init, preset=args.preset, hands="virtual", seed=args.seed), ""
 
 
+def _approach(args: argparse.Namespace) -> float:
+    return 0.0 if args.no_approach else float(args.approach)
+
+
 def _loop_config(obj: Any, world: Any, args: argparse.Namespace) -> tuple[Any, str]:
     from artiplan.encoding import EncodingOptions
     from artiplan.execution import Intervention, LoopConfig
-    from artiplan.execution.calibrate import calibrate, measure_reach_time
+    from artiplan.execution.calibrate import calibrate, measure_reach
     from artiplan.world import make_world
 
     calib = calibrate(make_world, obj, preset=args.preset)
-    reach = args.reach_time if args.reach_time is not None else measure_reach_time(world)
+    reach, how = args.reach_time, "given"
+    approach = float(getattr(world.hands, "approach_s", 0.0) or 0.0)
+    if reach is None and approach > 0:
+        reach = measure_reach(make_world, obj, preset=args.preset, approach_s=approach)
+        how = f"measured on the simulated Baxter, {approach:g} s approach"
     enc = EncodingOptions(args.model, speed_g=round(calib.speed_g, 3),
                           acceleration=round(calib.acceleration, 3), reach_time=reach)
     link, plane, delta, fraction = INTERVENTION
@@ -128,7 +147,7 @@ def _loop_config(obj: Any, world: Any, args: argparse.Namespace) -> tuple[Any, s
     config = LoopConfig(encoding=enc, goal_style=args.goal, interventions=interventions)
     note = (f"calibrated from a release run: speed-g {enc.speed_g:g} deg/s (UCM), "
             f"acceleration {enc.acceleration:g} deg/s^2 (UACM); reach time "
-            + (f"{reach:.2f} s" if reach is not None else "none (instant grasps)"))
+            + (f"{reach:.2f} s ({how})" if reach is not None else "none (instant grasps)"))
     return config, note
 
 

@@ -84,21 +84,28 @@ def calibrate(make: Callable[..., World], obj: ArticulatedObject, *, preset: str
     return Calibration(speed, acc, window_s, start_gamma, tuple(times), tuple(gammas))
 
 
-def measure_reach_time(world: World) -> float | None:
-    """Seconds the world's hands need between a release and the next grasp, or None.
+def measure_reach(make: Callable[..., World], obj: ArticulatedObject, *, preset: str = "stiff",
+                  approach_s: float = 1.0, seed: int = 0, repeats: int = 2) -> float | None:
+    """Reach time [s, simulated] measured on Baxter arms that approach their grasps.
 
-    Hands may say so themselves (``reach_time``, a number or ``reach_time(world)``); Baxter
-    arms that move to their grasps in simulated time (``approach_s`` > 0) need that plus their
-    settling time. Virtual hands, and Baxter arms that jump to their grasps (the default),
-    grasp at once: None, the paper's instantaneous grasps.
+    In a fresh Baxter world (``make``: a ``make_world``-like factory) with the object in the
+    release configuration, the arms are sent ``repeats`` times from released to holding
+    (L1-L2 then L2-L3 ..., rotating on ``z-axis``), each after a release; the reach time is the
+    longest simulated time one ``hold_and_rotate`` took before the rotation could start
+    (release -> next grasp ready). None when the arms grasp at once (``approach_s`` = 0).
     """
-    measure = getattr(world.hands, "reach_time", None)
-    if measure is not None:
-        value = measure(world) if callable(measure) else measure
-        return float(value) if value is not None else None
-    approach = float(getattr(world.hands, "approach_s", 0.0) or 0.0)
-    if approach <= 0.0:
+    if approach_s <= 0:
         return None
-    from artiplan.world.baxter import APPROACH_SETTLE_S
-
-    return approach + APPROACH_SETTLE_S
+    world = make(obj, release_configuration(obj.n_links, 0.0), preset=preset, hands="baxter",
+                 seed=seed, approach_s=approach_s)
+    links = obj.links
+    longest = 0.0
+    for i in range(repeats):
+        hold, turn = links[i % (len(links) - 1)], links[i % (len(links) - 1) + 1]
+        world.stop(release=True)
+        t0 = world.time
+        world.hold_and_rotate(hold, turn, "z-axis", 1, 1.0)
+        longest = max(longest, world.time - t0)
+        world.run_until(world.time + 0.5)
+    world.stop(release=True)
+    return round(longest, 3) if longest > 0 else None

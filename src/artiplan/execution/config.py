@@ -66,6 +66,11 @@ class LoopConfig:
         monitor_tip_links: Also monitor links tip-ward of every goal link. They cannot move a
             goal link in the model, and the model mispredicts carried links, so by default
             their errors are logged but do not trigger re-plans.
+        compensate_approach: With hands that approach their grasps in simulated time and a
+            ``reach_time`` in the encoding: plans start with the hands away (the first grasp
+            waits ``reach_time`` too), each start is dispatched ``reach_time`` early, and the
+            prediction is shifted by the remaining lateness (False: dispatch at the planned
+            time, the approach delays the action).
     """
 
     encoding: EncodingOptions = field(default_factory=lambda: EncodingOptions("ucm", speed_g=0.5))
@@ -86,6 +91,7 @@ class LoopConfig:
     fallback_after: int = 2
     use_ontology: bool = True
     monitor_tip_links: bool = False
+    compensate_approach: bool = True
 
     def __post_init__(self) -> None:
         if self.threshold_deg <= 0 or self.accept_deg <= 0 or self.plan_tolerance_deg <= 0:

@@ -1,6 +1,11 @@
 """The closed loop: perceive -> PDDL+ problem -> plan -> dispatch -> monitor -> re-plan.
 
 Simulated time is the world's clock: actions are dispatched at their planned times on it.
+Arms that take time to reach their grasps (Baxter with ``approach_s`` > 0) move inside the
+dispatch of a ``start-*`` action. With a ``reach_time`` in the encoding (the measured one), the
+plan already leaves that gap after each release (and, the hands being away, before the first
+grasp): the loop dispatches each start ``reach_time`` early, so the grasp is ready at the
+planned time, and shifts the prediction by whatever lateness remains.
 Planning latency is measured on the wall clock and logged; with
 ``LoopConfig.advance_latency`` the world also runs on (hands released) for that long before the
 new plan starts, else simulated time stands still while the planner thinks.
@@ -62,6 +67,10 @@ class ClosedLoop:
         self.monitor = Monitor(self.obj, config.threshold_deg, self.goal.links,
                                config.other_threshold_deg, config.monitor_tip_links)
         self.encoding = enc
+        #: How early [s] a ``start-*`` is dispatched: the modelled reach time, when the hands
+        #: really approach their grasps in simulated time (else they grasp at once: 0).
+        approaching = float(getattr(world.hands, "approach_s", 0.0) or 0.0) > 0.0
+        self.lead = (enc.reach_time or 0.0) if approaching and config.compensate_approach else 0.0
         self.pending = sorted(config.interventions, key=lambda i: i.time)
         self.replans = 0
         #: Links carried by the vertical-plane rotation in progress (see Monitor.check).
@@ -129,7 +138,8 @@ class ClosedLoop:
     def _plan(self, reason: str) -> Prediction | None:
         """Perceive, build the problem, plan; log it. None when no plan was found."""
         start = canonical(self._perceive_for_planning())
-        problem = build_problem(self.obj, start, self.target, self.encoding, self.goal)
+        problem = build_problem(self.obj, start, self.target, self.encoding, self.goal,
+                                hands_away=self.lead > 0.0)
         t = time.perf_counter()
         result = plan(self.domain, problem, time_limit=self.config.plan_time_limit)
         latency = time.perf_counter() - t
@@ -172,14 +182,15 @@ class ClosedLoop:
         None when the plan ran to its end."""
         plan_ = self.current_plan
         actions = sorted(plan_.actions, key=lambda a: a.time)
-        end = pred.t0 + max(plan_.makespan, plan_.end or 0.0)
+        span = max(plan_.makespan, plan_.end or 0.0)
         index, i = len(self.log.plans) - 1, 0
         # The world advances in physics steps (and not at all for less than half a step): a
         # time is reached when it is within half a step.
         tol = 0.5 * float(self.world.model.opt.timestep) + _EPS
         next_mon = self.world.time
         while True:
-            t_act = pred.t0 + actions[i].time if i < len(actions) else end
+            end = pred.t0 + span  # the prediction shifts when a grasp is late
+            t_act = self._due(actions[i], pred) if i < len(actions) else end
             t_int = self.pending[0].time if self.pending else float("inf")
             t_next = min(t_act, next_mon, t_int)
             self.world.run_until(t_next)
@@ -193,12 +204,12 @@ class ClosedLoop:
             if reason is not None and self._may_replan():
                 return reason
             if happening:
-                while i < len(actions) and pred.t0 + actions[i].time <= now + tol:
+                while i < len(actions) and self._due(actions[i], pred) <= now + tol:
                     failure = self._dispatch(actions[i], pred, index)
                     i += 1
                     if failure is not None and self._may_replan():
                         return failure
-            if i >= len(actions) and now >= end - tol:
+            if i >= len(actions) and now >= pred.t0 + span - tol:
                 return None
             if t_next >= next_mon - tol:
                 next_mon = now + self.config.monitor_dt
@@ -221,13 +232,24 @@ class ClosedLoop:
         return (f"{verdict.worst_link} off the prediction by {verdict.worst_error:.1f} deg "
                 f"(threshold {verdict.threshold:g})")
 
+    def _due(self, action: Any, pred: Prediction) -> float:
+        """World time [s] to dispatch ``action``: a start ``lead`` early (its reach)."""
+        early = self.lead if action.name.lower().startswith("start-") else 0.0
+        return pred.t0 + action.time - early
+
     def _dispatch(self, action: Any, pred: Prediction, index: int) -> str | None:
         enc = self.encoding
         now = self.world.time
+        planned = pred.t0 + action.time
         try:
-            did, ok = dispatch(self.world, action, (enc.speed_i, enc.speed_d), pred.at(now)), True
+            did, ok = dispatch(self.world, action, (enc.speed_i, enc.speed_d),
+                               pred.at(max(now, planned))), True
         except ActionFailed as exc:
             did, ok = str(exc), False
+        if ok and self.world.time > now:  # the arms approached: the rotation starts now
+            shift = self.world.time - planned
+            did += f" (reach {self.world.time - now:.2f} s, {shift:+.2f} s off the plan)"
+            pred.t0 += shift
         self.carried = _carried(self.obj.links, action) if ok else frozenset()
         self.log.happenings.append({"time": round(now, 4), "plan": index,
                                     "action": action.signature, "ok": ok, "did": did})

@@ -26,7 +26,15 @@ def canonical(conf: Configuration) -> Configuration:
 
 def build_problem(
     obj: ArticulatedObject, perceived: Configuration, target: Configuration,
-    options: EncodingOptions, goal: GoalSpec,
+    options: EncodingOptions, goal: GoalSpec, hands_away: bool = False,
 ) -> str:
-    """The PDDL+ problem from the perceived configuration (canonical covers) to ``goal``."""
-    return problem_pddl(obj, canonical(perceived), target, options, goal=goal, name="replan")
+    """The PDDL+ problem from the perceived configuration (canonical covers) to ``goal``.
+
+    ``hands_away`` (with a ``reach_time``): the hands are released and away from the object,
+    so the first grasp also waits ``reach-time`` (the problem starts ``(reaching)``; gravity
+    acts meanwhile), as after a release inside the plan.
+    """
+    text = problem_pddl(obj, canonical(perceived), target, options, goal=goal, name="replan")
+    if hands_away and options.reach_time is not None:
+        text = text.replace("(:init\n", "(:init\n    (reaching)\n", 1)
+    return text

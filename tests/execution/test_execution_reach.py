@@ -1,0 +1,44 @@
+"""The reach time measured on the simulated Baxter (arms approaching their grasps) ends up in
+the loop's PDDL+ problems; the problem starts with the hands away."""
+
+from __future__ import annotations
+
+import re
+
+import pytest
+
+from artiplan.encoding import EncodingOptions, make_goal
+from artiplan.encoding.suite import make_task
+from artiplan.execution.calibrate import measure_reach
+from artiplan.execution.problem import build_problem
+from artiplan.model import ArticulatedObject
+
+
+def _problem(reach: float | None, hands_away: bool) -> str:
+    obj = ArticulatedObject(4)
+    task = make_task(4, 1, seed=7)
+    enc = EncodingOptions("ucm", speed_g=0.9, reach_time=reach)
+    goal = make_goal(obj, task.target, "window", 1, planes=enc.planes, tolerance=2.5)
+    return build_problem(obj, task.initial, task.target, enc, goal, hands_away=hands_away)
+
+
+def test_hands_away_only_with_a_reach_time() -> None:
+    assert "(reaching)" in _problem(1.2, hands_away=True)
+    assert "(reaching)" not in _problem(1.2, hands_away=False)
+    assert "(reaching)" not in _problem(None, hands_away=True)
+    assert "reach-time" not in _problem(None, hands_away=True)
+
+
+@pytest.mark.slow
+@pytest.mark.ci  # ~4.5 s: builds a Baxter world and simulates its approach
+def test_measured_baxter_reach_time_is_positive_and_in_the_problem() -> None:
+    from artiplan.world import make_world
+
+    obj = ArticulatedObject(4)
+    assert measure_reach(make_world, obj, approach_s=0.0) is None
+    reach = measure_reach(make_world, obj, approach_s=0.4, repeats=1)
+    assert reach is not None
+    # The approach itself takes 0.4 s of simulation; the arms then settle on the grasp.
+    assert 0.4 <= reach < 2.0
+    found = re.search(r"\(= \(reach-time\) ([0-9.]+)\)", _problem(reach, hands_away=True))
+    assert found is not None and float(found.group(1)) == reach
