@@ -273,11 +273,12 @@ class Dynamics:
     def wait_until(
         self, t: float, facts: int, values: Values, cond: CondFn, cond_comps: frozenset[int],
         log: EventLog, active: tuple[int, ...], max_steps: int = 64, margin: float = 0.0,
+        horizon: float = math.inf,
     ) -> tuple[float, int, Values, tuple[int, ...]] | None:
         """Wait until ``cond`` holds (then ``margin`` [s] more if it keeps holding), or None.
 
         Stops at the first change of the dynamics or of ``cond``'s comparisons; gives up after
-        ``max_steps`` such changes or when nothing moves any more.
+        ``max_steps`` such changes, when nothing moves any more, or past ``horizon`` [s].
         """
         act = active
         for _ in range(max_steps):
@@ -288,6 +289,8 @@ class Dynamics:
             if dt is None:
                 return None
             t_next = grid_after(t + dt, self.config.grid)
+            if t_next > horizon:
+                return None
             facts, values, act = self.advance(t, facts, values, t_next, log, act)
             t = t_next
             if cond(facts, values):
