@@ -12,7 +12,7 @@ validator accepts is returned; if none is accepted, the first plan stays.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from typing import Any
 
 from artiplan.search.compiled import CompiledTask
@@ -38,7 +38,6 @@ class ImproveConfig:
         time_share: The phase stops once this share of the time limit has passed.
         gain: A plan with more actions must shorten the makespan by at least this share (a few
             extra actions for milliseconds is not a better plan).
-        boost: Pops from the preferred list after progress (the first search's is 1000).
     """
 
     factor: float = 3.0
@@ -47,7 +46,6 @@ class ImproveConfig:
     weights: tuple[tuple[float, float], ...] = ((1.0, 2.0), (0.3, 2.0), (3.0, 2.0))
     time_share: float = 0.9
     gain: float = 0.05
-    boost: int = 0
 
 
 def better(mk: float, n: int, best_mk: float, best_n: int, gain: float = 0.05) -> bool:
@@ -99,8 +97,6 @@ def improve(
                 limits.elapsed() > settings.time_share * limits.time_limit:
             raise LimitReached("time", "improvement stopped by the time limit")
 
-    # no boost of the preferred list: the first search followed it; alternate with the rest
-    config = replace(config, boost=settings.boost)
     try:
         stats["improve_probes"] = _probe(
             Search(ct, dyn, RateHeuristic(ct, HeuristicConfig(), dyn.active), config, check,
