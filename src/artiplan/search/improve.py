@@ -41,9 +41,9 @@ class ImproveConfig:
     """
 
     factor: float = 3.0
-    minimum: int = 60
+    minimum: int = 30
     maximum: int = 3000
-    weights: tuple[tuple[float, float], ...] = ((1.0, 2.0), (0.3, 2.0), (3.0, 2.0))
+    weights: tuple[tuple[float, float], ...] = ((1.0, 2.0), (3.0, 2.0))
     time_share: float = 0.9
     gain: float = 0.05
 
