@@ -11,5 +11,6 @@ Modules, in the order a planning call uses them:
 - ``heuristic``, ``sideeffects``, ``intervals``: the rate-aware numeric relaxation and its
   helpful actions.
 - ``engine``: lazy greedy best-first search with a preferred-operator open list.
+- ``improve``: after the first plan, bounded re-searches (expansion budget) for a shorter one.
 - ``limits``: time and memory limits checked in the search loop.
 """

@@ -2,8 +2,10 @@
 
 The pipeline, each phase timed: load (parse + ground) -> compile -> prove unsolvable? ->
 search (greedy best-first in exact time, :mod:`artiplan.search.engine`) -> extract the timed plan
--> validate it with :func:`artiplan.semantics.validate` (VAL's rules). A plan the validator
-rejects is never returned as solved: that is a bug, reported as ``ERROR`` with the reason.
+-> validate it with :func:`artiplan.semantics.validate` (VAL's rules) -> search on for a shorter
+plan within an expansion budget (:mod:`artiplan.search.improve`), validated the same way. A plan
+the validator rejects is never returned as solved: that is a bug, reported as ``ERROR`` with the
+reason.
 """
 
 from __future__ import annotations
@@ -12,6 +14,7 @@ import time
 from dataclasses import dataclass, field
 from enum import Enum
 from pathlib import Path
+from types import SimpleNamespace
 from typing import Any
 
 from artiplan.errors import ExitCode, UsageError
@@ -209,11 +212,18 @@ def _improve(
 ) -> tuple[Plan, Any]:
     """The anytime phase (:mod:`artiplan.search.improve`): a better validated plan, or ``first``."""
 
+    validate_before = stats.get("validate_s", 0.0)  # the first plan's validation [s]
+
     def check(found: Plan) -> Any:
-        return _validate(task, found, stats) if options.get("validate", True) else None
+        if not options.get("validate", True):
+            return None
+        left = limits.remaining()
+        if left is not None and left < 2.0 * validate_before:
+            # validating might overrun the time limit: keep the first plan, validated already
+            return SimpleNamespace(valid=False, reason="no time left to validate", trajectory=None)
+        return _validate(task, found, stats)
 
     t = time.perf_counter()
-    validate_before = stats.get("validate_s", 0.0)
     best, report, extra = improve(ct, dyn, config, limits, first, int(stats.get("expanded", 0)),
                                   lambda outcome: extract_plan(ct, outcome), check)
     stats.update(extra)

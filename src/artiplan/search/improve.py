@@ -119,7 +119,7 @@ def improve(
         report = validate(found)
         if report is None or report.valid:
             return found, report, stats
-        stats.setdefault("rejected_reasons", []).append(report.reason)
+        stats.setdefault("improve_rejected", []).append(report.reason)
     return first, None, stats
 
 
