@@ -32,6 +32,8 @@ def main() -> None:
     ap.add_argument("--reach-time", type=float, default=None)
     ap.add_argument("--approach", type=float, default=0.0,
                     help="Baxter arms approach their grasps in this many seconds")
+    ap.add_argument("--no-compensate", action="store_true",
+                    help="dispatch starts at their planned times (the approach delays them)")
     ap.add_argument("--start", type=int, default=1, help="first task index")
     ap.add_argument("-o", "--out", type=Path, required=True)
     args = ap.parse_args()
@@ -53,7 +55,8 @@ def main() -> None:
                           acceleration=round(cal.acceleration, 3), reach_time=reach)
     ivs = (Intervention(0.0, "L3", "z-axis", 20.0, fraction=0.4),) if args.intervene else ()
     config = LoopConfig(encoding=enc, interventions=ivs, plan_tolerance_deg=args.plan_tol,
-                        advance_latency=args.advance_latency)
+                        advance_latency=args.advance_latency,
+                        compensate_approach=not args.no_compensate)
     rows = []
     with args.out.open("a" if args.start > 1 else "w") as fh:
         for k in range(args.start, args.start + args.tasks):
@@ -69,7 +72,8 @@ def main() -> None:
                    "sim_s": round(world.time, 3), "wall_s": round(time.perf_counter() - t0, 3),
                    "max_goal_error": log.final.get("max_goal_error"),
                    "hands": world.hands.kind, "model": args.model, "preset": args.preset,
-                   "approach_s": args.approach, "reach_time": reach}
+                   "approach_s": args.approach, "reach_time": reach,
+                   "compensate": not args.no_compensate}
             rows.append(row)
             fh.write(json.dumps(row) + "\n")
             print(json.dumps(row), flush=True)
