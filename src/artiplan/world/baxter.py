@@ -9,7 +9,9 @@ inverse-kinematics solution (damped least squares on ``mj_jacBody``) plus the bi
 Limits of this implementation (honest): the fingers close for show, the weld holds the link;
 by default an arm *jumps* to its grasp (its IK solution is written into the state); with
 ``approach_s`` > 0 it moves there in simulated time, and the last few millimetres still jump;
-retreats are not simulated; arm collisions are off (no collision avoidance).
+retreats are not simulated; arm contacts are off in the physics: collisions are avoided by
+choosing, among the candidate grasps, IK solutions clear of the torso, the other arm, the
+table, fixture and other links (:mod:`artiplan.world.collision`), not during the motion.
 """
 
 from __future__ import annotations
@@ -22,6 +24,7 @@ import mujoco
 import numpy as np
 
 from artiplan.model import ArticulatedObject
+from artiplan.world.collision import ArmGeoms, arm_geoms, clearance, repulsion
 from artiplan.world.hands import Hands
 from artiplan.world.mjcf import SceneLayout
 from artiplan.world.rotations import Vec, quat_conj, quat_mul, quat_to_mat
@@ -46,6 +49,17 @@ NULLSPACE_GAIN = 0.05
 TRACK_NULLSPACE_GAIN = 0.0005
 #: Grasps with a joint closer than this to a limit [rad] score worse (less room to rotate).
 LIMIT_MARGIN = 0.3
+#: Grasps whose arm comes closer than this [m] to the torso, the other arm, the pedestal,
+#: table, fixture or another link score worse, by CLEARANCE_WEIGHT per metre inside it (a
+#: candidate 1 cm in collision scores like one missing its grasp point by 4 cm).
+CLEARANCE_MARGIN = 0.02
+CLEARANCE_WEIGHT = 4.0
+#: The grasp IK's null-space push away from obstacles nearer than AVOID_MARGIN [m]: gain
+#: [rad per metre of intrusion per iteration], recomputed every AVOID_EVERY iterations (each
+#: check costs a few hundred geom distances).
+AVOID_GAIN = 2.0
+AVOID_MARGIN = 0.05
+AVOID_EVERY = 10
 
 
 class OutOfReachError(RuntimeError):
@@ -142,7 +156,11 @@ class BaxterHands(Hands):
         if self.approach_s <= 0:
             return
         starts = {h: self.data.qpos[self._q[h]].copy() for h, _ in pairs}
-        goals = {h: self._best_grasp(h, link)[0] for h, link in pairs}
+        goals: dict[str, Vec] = {}
+        for h, link in pairs:  # the second arm's grasp avoids the first arm's goal
+            q, _, _, index = self._search_grasp(h, link, goals)
+            goals[h] = q
+            self._planned[h] = (link, index)  # the grasp then keeps this candidate
         n = max(1, int(round(self.approach_s / APPROACH_DT)))
         dt = self.approach_s / n
         for i in range(1, n + 1):
@@ -163,6 +181,11 @@ class BaxterHands(Hands):
     def bind(self, model: mujoco.MjModel, data: mujoco.MjData, obj: ArticulatedObject) -> None:
         self.model, self.data = model, data
         self.ik_data = mujoco.MjData(model)
+        self._planned: dict[str, tuple[str, int]] = {}
+        self._grasp_cache: dict[tuple[object, ...], tuple[Vec, Vec, float]] = {}
+        self.geoms: dict[str, ArmGeoms] = {
+            h: arm_geoms(model, h, list(obj.links), PREFIX) for h in self.names
+        }
         self._hand = {h: model.body(f"{PREFIX}{h}_hand").id for h in self.names}
         self._q = {}
         self._v = {}
@@ -272,20 +295,45 @@ class BaxterHands(Hands):
                 poses.append((centre - self._depth * z, quat))
         return poses
 
-    def _best_grasp(self, hand: str, link: str) -> tuple[Vec, Vec, float]:
-        """(joint angles, IK target position, miss [m]) of the best candidate grasp."""
-        best: tuple[Vec, Vec, float] | None = None
+    def _best_grasp(
+        self, hand: str, link: str, others: dict[str, Vec] | None = None
+    ) -> tuple[Vec, Vec, float]:
+        """(joint angles, IK target position, miss [m]) of the best candidate grasp;
+        ``others``: joint angles of the other arm to assume (default: where it is now).
+        Cached per state: :meth:`assign` and :meth:`grasp` ask for the same grasps."""
+        key = (hand, link, self.data.time, self.data.qpos.tobytes(), repr(others))
+        cached = self._grasp_cache.get(key)
+        if cached is None:
+            cached = self._grasp_cache[key] = self._search_grasp(hand, link, others)[:3]
+            while len(self._grasp_cache) > 8:  # only the current motion's grasps matter
+                self._grasp_cache.pop(next(iter(self._grasp_cache)))
+        return cached
+
+    def _search_grasp(
+        self, hand: str, link: str, others: dict[str, Vec] | None
+    ) -> tuple[Vec, Vec, float, int]:
+        """Solve the IK of every candidate grasp pose and score it (see :meth:`_best_grasp`);
+        also returns the chosen candidate's index in :meth:`grasp_poses`."""
+        best: tuple[Vec, Vec, float, int] | None = None
         best_score = np.inf
         q_now = self.data.qpos[self._q[hand]].copy()
-        for pos, quat in self.grasp_poses(hand, link):
-            q = self.solve_ik(hand, pos, quat, iterations=150)
-            miss = self._ik_miss(hand, pos, quat)
+        for index, (pos, quat) in enumerate(self.grasp_poses(hand, link)):
+            q = self.solve_ik(hand, pos, quat, iterations=150, avoid=link)
+            miss = self._ik_miss(hand, pos, quat)  # leaves ik_data's kinematics at q
+            for h, q_other in (others or {}).items():
+                if h != hand:
+                    self.ik_data.qpos[self._q[h]] = q_other
+                    mujoco.mj_kinematics(self.model, self.ik_data)
+            clear = clearance(self.model, self.ik_data, self.geoms[hand], held=link)[0]
             room = float(np.minimum(q - self._lo[hand], self._hi[hand] - q).min())
-            # Prefer reachable, away from limits, then close to where the arm is now.
-            score = miss + 0.05 * max(0.0, LIMIT_MARGIN - room)
+            # Prefer reachable, collision-free, away from limits, then close to where the arm
+            # is now.
+            score = miss + CLEARANCE_WEIGHT * max(0.0, CLEARANCE_MARGIN - clear)
+            score += 1.0 if miss > REACH_TOLERANCE else 0.0
+            score += 0.05 * max(0.0, LIMIT_MARGIN - room)
             score += 0.002 * float(np.linalg.norm(q - q_now))
             if score < best_score:
-                best, best_score = (q, pos, miss), score
+                best, best_score = (q, pos, miss, index), score
         assert best is not None
         return best
 
@@ -293,7 +341,14 @@ class BaxterHands(Hands):
         self._check_hand(hand)
         if self._held[hand] is not None:
             self.release(hand)
-        q, pos, miss = self._best_grasp(hand, link)
+        planned = self._planned.pop(hand, None)
+        if planned is not None and planned[0] == link:  # after an approach: same candidate
+            pos, quat = self.grasp_poses(hand, link)[planned[1]]
+            q_now = self.data.qpos[self._q[hand]].copy()
+            q = self.solve_ik(hand, pos, quat, iterations=150, start=q_now, avoid=link)
+            miss = self._ik_miss(hand, pos, quat)
+        else:
+            q, pos, miss = self._best_grasp(hand, link)
         if miss > REACH_TOLERANCE:
             raise OutOfReachError(f"Baxter's {hand} hand cannot reach {link} ({miss:.3f} m short)")
         # The arm jumps the rest of the way to the grasp (all of it without an approach).
@@ -348,8 +403,11 @@ class BaxterHands(Hands):
         start: Vec | None = None,
         damping: float = 1e-2,
         nullspace: float = NULLSPACE_GAIN,
+        avoid: str | None = None,
     ) -> Vec:
-        """Joint angles [rad] putting ``hand`` at (pos, quat): damped least squares."""
+        """Joint angles [rad] putting ``hand`` at (pos, quat): damped least squares. With
+        ``avoid`` (the link the hand will hold), the null space also pushes the arm away from
+        the torso, the other arm, the scene and the other links."""
         m, d = self.model, self.ik_data
         d.qpos[:] = self.data.qpos
         qa, va, body = self._q[hand], self._v[hand], self._hand[hand]
@@ -358,7 +416,8 @@ class BaxterHands(Hands):
         jp, jr = np.zeros((3, m.nv)), np.zeros((3, m.nv))
         err = np.zeros(6)
         q_err = np.empty(4)
-        for _ in range(iterations):
+        push = np.zeros(len(qa))
+        for it in range(iterations):
             mujoco.mj_kinematics(m, d)
             mujoco.mj_comPos(m, d)
             err[:3] = pos - d.xpos[body]
@@ -373,6 +432,9 @@ class BaxterHands(Hands):
             # Null space: drift toward mid-range, away from joint limits (the arm has 7 dof).
             mid = 0.5 * (self._lo[hand] + self._hi[hand])
             toward = nullspace * (mid - d.qpos[qa]) / (self._hi[hand] - self._lo[hand])
+            if avoid is not None and it % AVOID_EVERY == 0:
+                push = AVOID_GAIN * repulsion(m, d, self.geoms[hand], va, avoid, AVOID_MARGIN)
+            toward = toward + push
             dq += toward - jac.T @ np.linalg.solve(jjt, jac @ toward)
             step = np.linalg.norm(dq)
             if step > 0.2:  # rad: keep steps small so the linearisation holds

@@ -1,0 +1,165 @@
+"""Clearance of Baxter's arms: signed distances between each arm's collision geoms and the
+obstacles (torso and head, the other arm, the pedestal, table, fixture and the object's links).
+
+Used to choose grasps: the IK itself knows nothing of obstacles, so each candidate solution is
+checked here (``mj_geomDistance`` on robosuite's primitive collision shapes) and penalised when
+closer than a margin. The grasping gripper is allowed to touch the link it holds.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import mujoco
+import numpy as np
+
+#: Distances beyond this [m] are not computed exactly (GJK stops early): only near pairs matter.
+DIST_MAX = 0.2
+
+
+@dataclass(frozen=True)
+class ArmGeoms:
+    """Geom ids (and names, for reports) of one arm and of what it must not touch.
+
+    Attributes:
+        arm: The arm's collision geoms (shoulder to fingertips).
+        gripper: The subset on the gripper (may touch the link it holds).
+        shoulder: The subset mounted on the torso (shoulder, e0 housing): not checked against
+            it.
+        torso: Torso and head collision geoms.
+        other: The other arm's collision geoms.
+        scene: Pedestal, table and fixture.
+        links: Link name -> the link's capsule geom.
+    """
+
+    arm: tuple[int, ...]
+    gripper: tuple[int, ...]
+    shoulder: tuple[int, ...]
+    torso: tuple[int, ...]
+    other: tuple[int, ...]
+    scene: tuple[int, ...]
+    links: dict[str, int]
+
+
+def arm_geoms(
+    model: mujoco.MjModel, hand: str, links: list[str], prefix: str = "baxter_"
+) -> ArmGeoms:
+    """Classify the model's geoms for ``hand`` (``left``/``right``). Robot collision geoms are
+    those :func:`artiplan.world.baxter.attach_baxter` moved to group 3 (robosuite's group 0)."""
+    other = "right" if hand == "left" else "left"
+    arm: list[int] = []
+    gripper: list[int] = []
+    shoulder: list[int] = []
+    torso: list[int] = []
+    other_arm: list[int] = []
+    for g in range(model.ngeom):
+        body = model.body(int(model.geom_bodyid[g])).name
+        if not body.startswith(prefix) or int(model.geom_group[g]) != 3:
+            continue
+        if body.startswith(f"{prefix}{hand}_"):
+            arm.append(g)
+            if "gripper" in body:
+                gripper.append(g)
+            # The shoulder and the elbow housing next to it (e0) sit against the torso; the
+            # torso is a mesh, i.e. its convex hull for distances, which fills the space
+            # around the shoulder mount (e0's housing "penetrates" it by 1-2 cm at ordinary
+            # poses): never check those against the torso (the upper arm's own geom is).
+            if "shoulder" in body or model.geom(g).name.endswith("_e0_collision"):
+                shoulder.append(g)
+        elif body.startswith(f"{prefix}{other}_"):
+            other_arm.append(g)
+        elif "torso" in body or "head" in body:
+            torso.append(g)
+    scene = []
+    for name in ("baxter_pedestal", "table", "fixture_block", "fixture_arm"):
+        gid = mujoco.mj_name2id(model, mujoco.mjtObj.mjOBJ_GEOM, name)
+        if gid >= 0:
+            scene.append(gid)
+    link_ids = {link: model.geom(f"{link}_geom").id for link in links}
+    return ArmGeoms(
+        tuple(arm),
+        tuple(gripper),
+        tuple(shoulder),
+        tuple(torso),
+        tuple(other_arm),
+        tuple(scene),
+        link_ids,
+    )
+
+
+def _pairs(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    geoms: ArmGeoms,
+    held: str | None,
+    with_links: bool,
+    margin: float,
+) -> list[tuple[int, int]]:
+    """(arm geom, obstacle geom) pairs to check whose bounding spheres come within
+    ``margin`` [m] (a vectorised pre-filter: most pairs are far apart)."""
+    held_id = geoms.links.get(held, -1) if held is not None else -1
+    links = tuple(geoms.links.values()) if with_links else ()
+    pairs = []
+    for a in geoms.arm:
+        torso = () if a in geoms.shoulder else geoms.torso
+        obstacles = np.array([*torso, *geoms.other, *geoms.scene, *links], dtype=int)
+        if a in geoms.gripper:
+            obstacles = obstacles[obstacles != held_id]
+        gap = np.linalg.norm(data.geom_xpos[obstacles] - data.geom_xpos[a], axis=1)
+        gap -= model.geom_rbound[obstacles] + model.geom_rbound[a]
+        pairs += [(a, int(b)) for b in obstacles[gap < margin]]
+    return pairs
+
+
+def clearance(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    geoms: ArmGeoms,
+    held: str | None = None,
+    with_links: bool = True,
+) -> tuple[float, str]:
+    """Smallest signed distance [m] (negative: penetration) from the arm to any obstacle in
+    ``data``'s current kinematics (call ``mj_kinematics`` first), and the closest pair's names.
+    The gripper may touch ``held`` (the link it grasps); distances above :data:`DIST_MAX` are
+    reported as DIST_MAX."""
+    best, pair = DIST_MAX, ""
+    for a, b in _pairs(model, data, geoms, held, with_links, DIST_MAX):
+        dist = mujoco.mj_geomDistance(model, data, a, b, DIST_MAX, None)
+        if dist < best:
+            best, pair = dist, f"{model.geom(a).name}~{model.geom(b).name}"
+    return float(best), pair
+
+
+def arm_contacts(model: mujoco.MjModel, data: mujoco.MjData, geoms: ArmGeoms) -> int:
+    """Number of (arm geom, torso/other-arm/scene geom) pairs in penetration now."""
+    pairs = _pairs(model, data, geoms, None, False, 0.01)
+    return sum(mujoco.mj_geomDistance(model, data, a, b, 0.01, None) < 0.0 for a, b in pairs)
+
+
+
+def repulsion(
+    model: mujoco.MjModel,
+    data: mujoco.MjData,
+    geoms: ArmGeoms,
+    dofs: np.ndarray,
+    held: str | None = None,
+    margin: float = 0.05,
+) -> np.ndarray:
+    """Joint-space direction (over ``dofs``) pushing the arm's geoms closer than ``margin`` [m]
+    away from their obstacles: sum of J_p^T n (margin - distance), J_p the translational
+    Jacobian of the arm's closest point, n the unit vector from the obstacle's closest point
+    to the arm geom's centre (defined in penetration too). Zero when everything is clear."""
+    dq = np.zeros(len(dofs))
+    fromto = np.zeros(6)
+    jacp = np.zeros((3, model.nv))
+    for a, b in _pairs(model, data, geoms, held, True, margin):
+        dist = mujoco.mj_geomDistance(model, data, a, b, margin, fromto)
+        if dist >= margin:
+            continue
+        n = data.geom_xpos[a] - fromto[3:6]
+        norm = float(np.linalg.norm(n))
+        if norm < 1e-9:
+            continue
+        mujoco.mj_jac(model, data, jacp, None, fromto[0:3], int(model.geom_bodyid[a]))
+        dq += jacp[:, dofs].T @ (n / norm) * (margin - dist)
+    return dq

@@ -1,0 +1,40 @@
+"""Baxter's chosen grasps keep the arms clear of the torso, the other arm and the scene."""
+
+from __future__ import annotations
+
+import mujoco
+import pytest
+
+from artiplan.model import ArticulatedObject, Configuration
+from artiplan.world import make_world
+from artiplan.world.collision import arm_contacts, arm_geoms, clearance
+
+
+def test_clearance_sees_a_collision_and_ignores_the_mounted_shoulder() -> None:
+    obj = ArticulatedObject(4)
+    world = make_world(obj, hands="baxter")
+    geoms = arm_geoms(world.model, "left", list(obj.links))
+    assert geoms.arm and geoms.torso and geoms.other and geoms.gripper
+    # At home the arms are clear (the shoulder sits on the torso: that pair is not checked).
+    assert clearance(world.model, world.data, geoms)[0] > 0.0
+    # Fold the left elbow fully (e1 2.5 rad): the hand goes into the torso.
+    q = world.hands._q["left"]
+    world.data.qpos[q[:4]] = (0.5, 0.5, 0.0, 2.5)
+    mujoco.mj_kinematics(world.model, world.data)
+    dist, pair = clearance(world.model, world.data, geoms)
+    assert dist < 0.0 and "base_link_col" in pair, pair  # the torso
+    assert arm_contacts(world.model, world.data, geoms) > 0
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(("k", "plane"), [(2, "z-axis"), (3, "xy-axes")])
+def test_baxter_grasps_are_collision_free_on_four_links(k: int, plane: str) -> None:
+    obj = ArticulatedObject(4)
+    conf = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
+    world = make_world(obj, conf, hands="baxter", preset="stiff")
+    world.hold_and_rotate(f"L{k}", f"L{k + 1}", plane, 1, 10.0)
+    for hand in ("left", "right"):
+        geoms = arm_geoms(world.model, hand, list(obj.links))
+        dist, pair = clearance(world.model, world.data, geoms, world.hands.held(hand), False)
+        assert dist > 0.0, f"{hand}: {pair} {dist:.3f} m"
+        assert arm_contacts(world.model, world.data, geoms) == 0
