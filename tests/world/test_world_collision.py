@@ -38,3 +38,22 @@ def test_baxter_grasps_are_collision_free_on_four_links(k: int, plane: str) -> N
         dist, pair = clearance(world.model, world.data, geoms, world.hands.held(hand), False)
         assert dist > 0.0, f"{hand}: {pair} {dist:.3f} m"
         assert arm_contacts(world.model, world.data, geoms) == 0
+
+
+@pytest.mark.slow
+def test_baxter_retreats_after_release_in_simulated_time() -> None:
+    obj = ArticulatedObject(4)
+    conf = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
+    world = make_world(obj, conf, hands="baxter", preset="stiff")
+    world.hold_and_rotate("L2", "L3", "z-axis", 1, 10.0)
+    world.run_until(0.5)
+    hands = world.hands
+    grasp_points = {h: world.data.xpos[hands._hand[h]].copy() for h in ("left", "right")}
+    world.stop(release=True)
+    t0 = world.time
+    hands.retreat(["left", "right"], world.step, distance=0.1, duration_s=0.5)
+    assert world.time == pytest.approx(t0 + 0.7, abs=0.01)  # 0.5 s motion + 0.2 s settling
+    for h in ("left", "right"):
+        assert hands.held(h) is None
+        moved = float(((world.data.xpos[hands._hand[h]] - grasp_points[h]) ** 2).sum() ** 0.5)
+        assert 0.07 < moved < 0.13, (h, moved)

@@ -9,9 +9,11 @@ inverse-kinematics solution (damped least squares on ``mj_jacBody``) plus the bi
 Limits of this implementation (honest): the fingers close for show, the weld holds the link;
 by default an arm *jumps* to its grasp (its IK solution is written into the state); with
 ``approach_s`` > 0 it moves there in simulated time, and the last few millimetres still jump;
-retreats are not simulated; arm contacts are off in the physics: collisions are avoided by
-choosing, among the candidate grasps, IK solutions clear of the torso, the other arm, the
-table, fixture and other links (:mod:`artiplan.world.collision`), not during the motion.
+:meth:`BaxterHands.retreat` backs the opened hands away in simulated time (called by whoever
+sequences motions: the world itself does not). Arm contacts are off in the physics; collisions
+are avoided by choosing, among the candidate grasps, IK solutions clear of the torso, the other
+arm, the table, fixture and other links (:mod:`artiplan.world.collision`), not during the
+rotation (the tracking IK is blind to obstacles).
 """
 
 from __future__ import annotations
@@ -42,6 +44,10 @@ REACH_TOLERANCE = 0.01
 APPROACH_DT = 0.02
 #: Time [s] the arms get to settle on their grasps after an approach.
 APPROACH_SETTLE_S = 0.2
+#: Default retreat after a release: this far [m] back along the hand's approach axis, in
+#: this many simulated seconds.
+RETREAT_M = 0.1
+RETREAT_S = 0.5
 #: Pull of the IK's null-space term toward mid-range joint angles [rad per iteration].
 NULLSPACE_GAIN = 0.05
 #: The same while tracking, called every 2 ms step: small, or the arm's self-motion outruns
@@ -161,17 +167,52 @@ class BaxterHands(Hands):
             q, _, _, index = self._search_grasp(h, link, goals)
             goals[h] = q
             self._planned[h] = (link, index)  # the grasp then keeps this candidate
-        n = max(1, int(round(self.approach_s / APPROACH_DT)))
-        dt = self.approach_s / n
+        self._move(starts, goals, self.approach_s, advance)
+
+    def retreat(
+        self,
+        hands: list[str],
+        advance: Callable[[float], None],
+        distance: float = RETREAT_M,
+        duration_s: float = RETREAT_S,
+    ) -> None:
+        """Back each of ``hands`` (opened first if it still holds) ``distance`` [m] away along
+        its approach axis in ``duration_s`` simulated seconds, advancing the world with
+        ``advance(dt)``, so the next approach starts clear of the object. The world does not
+        call this itself: callers that simulate motions between grasps do."""
+        starts, goals = {}, {}
+        for h in hands:
+            self._check_hand(h)
+            if self._held[h] is not None:
+                self.release(h)
+            r_h = self.data.xmat[self._hand[h]].reshape(3, 3)
+            pos = self.data.xpos[self._hand[h]] - distance * r_h[:, 2]
+            starts[h] = self.data.qpos[self._q[h]].copy()
+            goals[h] = self.solve_ik(
+                h, pos, self.data.xquat[self._hand[h]].copy(), iterations=100, start=starts[h]
+            )
+        self._move(starts, goals, duration_s, advance)
+
+    def _move(
+        self,
+        starts: dict[str, Vec],
+        goals: dict[str, Vec],
+        duration_s: float,
+        advance: Callable[[float], None],
+    ) -> None:
+        """Joint-space smoothstep from ``starts`` to ``goals`` in ``duration_s`` simulated
+        seconds, then :data:`APPROACH_SETTLE_S` of settling."""
+        n = max(1, int(round(duration_s / APPROACH_DT)))
+        dt = duration_s / n
         for i in range(1, n + 1):
             x = i / n
             s = x * x * (3.0 - 2.0 * x)  # smoothstep: start and stop at rest
-            ds = 6.0 * x * (1.0 - x) / self.approach_s  # its rate [1/s]
-            for h, _ in pairs:
+            ds = 6.0 * x * (1.0 - x) / duration_s  # its rate [1/s]
+            for h in goals:
                 self._target_q[h] = starts[h] + s * (goals[h] - starts[h])
                 self._target_qd[h] = ds * (goals[h] - starts[h])
             advance(dt)
-        for h, _ in pairs:
+        for h in goals:
             self._target_qd[h] = np.zeros(len(ARM_JOINTS))
         advance(APPROACH_SETTLE_S)
 
