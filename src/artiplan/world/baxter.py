@@ -29,7 +29,7 @@ from artiplan.model import ArticulatedObject
 from artiplan.world.collision import ArmGeoms, arm_geoms, clearance, repulsion
 from artiplan.world.hands import Hands
 from artiplan.world.mjcf import SceneLayout
-from artiplan.world.rotations import Vec, quat_conj, quat_mul, quat_to_mat
+from artiplan.world.rotations import Vec, quat_axis_angle, quat_conj, quat_mul, quat_to_mat
 from artiplan.world.servo import ServoGains
 
 #: Where Baxter's base sits in the world [m] (on a pedestal, facing +x).
@@ -55,6 +55,11 @@ NULLSPACE_GAIN = 0.05
 TRACK_NULLSPACE_GAIN = 0.0005
 #: Grasps with a joint closer than this to a limit [rad] score worse (less room to rotate).
 LIMIT_MARGIN = 0.3
+#: The rotating hand's grasps are checked for joint-limit room this far [deg] into a turn
+#: either way (the planner's rotations are tens of degrees).
+SWEEP_DEG = 30.0
+#: Score per radian of missing room in that sweep (0.3 rad short ~ a 3 cm miss).
+SWEEP_WEIGHT = 0.1
 #: Grasps whose arm comes closer than this [m] to the torso, the other arm, the pedestal,
 #: table, fixture or another link score worse, by CLEARANCE_WEIGHT per metre inside it (a
 #: candidate 1 cm in collision scores like one missing its grasp point by 4 cm).
@@ -223,6 +228,7 @@ class BaxterHands(Hands):
         self.model, self.data = model, data
         self.ik_data = mujoco.MjData(model)
         self._planned: dict[str, tuple[str, int]] = {}
+        self._rotating: str | None = None
         self._grasp_cache: dict[tuple[object, ...], tuple[Vec, Vec, float]] = {}
         self.geoms: dict[str, ArmGeoms] = {
             h: arm_geoms(model, h, list(obj.links), PREFIX) for h in self.names
@@ -299,7 +305,8 @@ class BaxterHands(Hands):
     # -- grasping ------------------------------------------------------------------------
     def assign(self, hold_link: str, rotate_link: str) -> tuple[str, str]:
         """Which arm holds and which rotates, chosen by reach (the pairing with the smaller
-        worse IK miss)."""
+        worse IK miss). Remembers ``rotate_link``: its grasps are scored over the rotation."""
+        self._rotating = rotate_link
         straight = max(
             self._best_grasp("left", hold_link)[2], self._best_grasp("right", rotate_link)[2]
         )
@@ -366,17 +373,52 @@ class BaxterHands(Hands):
                     self.ik_data.qpos[self._q[h]] = q_other
                     mujoco.mj_kinematics(self.model, self.ik_data)
             clear = clearance(self.model, self.ik_data, self.geoms[hand], held=link)[0]
-            room = float(np.minimum(q - self._lo[hand], self._hi[hand] - q).min())
+            room = self._room(hand, q)
+            if link == self._rotating and miss <= REACH_TOLERANCE:
+                sweep = self._sweep_room(hand, link, pos, quat, q)
+                score_sweep = SWEEP_WEIGHT * max(0.0, LIMIT_MARGIN - sweep)
+            else:
+                score_sweep = 0.0
             # Prefer reachable, collision-free, away from limits, then close to where the arm
             # is now.
             score = miss + CLEARANCE_WEIGHT * max(0.0, CLEARANCE_MARGIN - clear)
             score += 1.0 if miss > REACH_TOLERANCE else 0.0
-            score += 0.05 * max(0.0, LIMIT_MARGIN - room)
+            score += 0.05 * max(0.0, LIMIT_MARGIN - room) + score_sweep
             score += 0.002 * float(np.linalg.norm(q - q_now))
             if score < best_score:
                 best, best_score = (q, pos, miss, index), score
         assert best is not None
         return best
+
+    def _room(self, hand: str, q: Vec) -> float:
+        """Smallest distance [rad] of ``q`` to a joint limit of ``hand``'s arm."""
+        return float(np.minimum(q - self._lo[hand], self._hi[hand] - q).min())
+
+    def _sweep_room(self, hand: str, link: str, pos: Vec, quat: Vec, q: Vec) -> float:
+        """Joint-limit room [rad] left when the grasp (pos, quat) on ``link`` is turned by
+        +-SWEEP_DEG about the link's joint, about the vertical and the horizontal normal (the
+        two rotation planes); an unreachable turned pose counts as no room. A grasp whose
+        arm meets a limit mid-rotation drags the held link (the 1-in-12 failures)."""
+        pivot = self.data.xpos[self.model.body(link).id]
+        u = -self.data.xmat[self.model.body(link).id].reshape(3, 3)[:, 2]
+        normal = np.cross(u, [0.0, 0.0, 1.0])
+        axes = [np.array([0.0, 0.0, 1.0])]
+        if np.linalg.norm(normal) > 1e-3:
+            axes.append(normal / np.linalg.norm(normal))
+        room = np.inf
+        for axis in axes:
+            for sign in (1.0, -1.0):
+                turn = quat_axis_angle(axis, sign * np.radians(SWEEP_DEG))
+                t_pos = pivot + quat_to_mat(turn) @ (pos - pivot)
+                t_quat = quat_mul(turn, quat)
+                # Tracking-like: nearly no null-space drift (the servo's IK has almost none).
+                q_t = self.solve_ik(
+                    hand, t_pos, t_quat, iterations=40, start=q, nullspace=TRACK_NULLSPACE_GAIN
+                )
+                if self._ik_miss(hand, t_pos, t_quat) > REACH_TOLERANCE:
+                    return 0.0
+                room = min(room, self._room(hand, q_t))
+        return float(room)
 
     def grasp(self, hand: str, link: str) -> None:
         self._check_hand(hand)
