@@ -18,24 +18,25 @@ rotation (the tracking IK is blind to obstacles).
 
 from __future__ import annotations
 
-import importlib.util
 from collections.abc import Callable
-from pathlib import Path
 
 import mujoco
 import numpy as np
 
 from artiplan.model import ArticulatedObject
+from artiplan.world.baxter_model import (  # noqa: F401 - re-exported (public names)
+    BAXTER_BASE,
+    PREFIX,
+    attach_baxter,
+    baxter_layout,
+    baxter_xml_path,
+)
 from artiplan.world.collision import ArmGeoms, arm_geoms, clearance, repulsion
 from artiplan.world.hands import Hands
-from artiplan.world.mjcf import SceneLayout
 from artiplan.world.rotations import Vec, quat_axis_angle, quat_conj, quat_mul, quat_to_mat
 from artiplan.world.servo import ServoGains
 
-#: Where Baxter's base sits in the world [m] (on a pedestal, facing +x).
-BAXTER_BASE = (0.0, 0.0, 0.9)
 ARM_JOINTS = ("s0", "s1", "e0", "e1", "w0", "w1", "w2")
-PREFIX = "baxter_"
 #: A comfortable start: elbows bent, hands in front of the torso.
 HOME = (0.0, -0.55, 0.0, 1.2, 0.0, 0.9, 0.0)
 #: A grasp whose IK solution misses the grasp point by more than this [m] is refused.
@@ -75,71 +76,6 @@ AVOID_EVERY = 10
 
 class OutOfReachError(RuntimeError):
     """Baxter cannot put a hand on the link (use virtual hands for long chains)."""
-
-
-def baxter_xml_path() -> Path:
-    """robosuite's ``robots/baxter/robot.xml`` (raises FileNotFoundError when absent)."""
-    spec = importlib.util.find_spec("robosuite")
-    if spec is None or not spec.submodule_search_locations:
-        raise FileNotFoundError("the robosuite wheel is not installed (pip install --no-deps)")
-    root = Path(next(iter(spec.submodule_search_locations)))
-    path = root / "models" / "assets" / "robots" / "baxter" / "robot.xml"
-    if not path.exists():
-        raise FileNotFoundError(f"no Baxter model at {path}")
-    return path
-
-
-def baxter_layout(obj: ArticulatedObject) -> SceneLayout:
-    """The object in front of Baxter, its fixture a little above shoulder height (higher for
-    chains longer than 6 links, so they hang free of the floor; Baxter reaches only the upper
-    links of those: use virtual hands)."""
-    height = max(1.12, obj.n_links * obj.link_length + 0.15)
-    return SceneLayout(
-        anchor=(0.62, 0.0, height), table_top=0.3, virtual_hands=False, fixture_arm=(0.4, 0.0, 0.0)
-    )
-
-
-def attach_baxter(spec: mujoco.MjSpec, obj: ArticulatedObject) -> None:
-    """Attach Baxter to ``spec`` and add an inactive weld per (hand, link)."""
-    robot = mujoco.MjSpec.from_file(str(baxter_xml_path()))
-    gripper_xml = baxter_xml_path().parents[2] / "grippers" / "rethink_gripper.xml"
-    if gripper_xml.exists():  # Rethink's electric grippers on both wrists (visual fingers)
-        for hand in ("left", "right"):
-            gripper = mujoco.MjSpec.from_file(str(gripper_xml))
-            for site in gripper.sites:  # robosuite's visual aids (long grip-axis cylinders)
-                site.group = 4
-            robot.body(f"{hand}_hand").add_frame().attach_body(
-                gripper.worldbody.first_body(), f"{hand}_gripper_", ""
-            )
-    for g in robot.geoms:  # no arm collisions (see the module docstring)
-        g.contype, g.conaffinity = 0, 0
-        if g.group == 0:  # robosuite's collision shapes: keep them out of the images
-            g.group = 3
-    for b in robot.bodies:
-        # Baxter's shoulder springs and controller carry the arm's own weight: model that as
-        # MuJoCo's passive gravity compensation, so the motors' limits are left for motion
-        # and the object (without it s1 needs ~90 of its 100 N m just to hold the arm out).
-        b.gravcomp = 1.0
-    spec.worldbody.add_geom(
-        name="baxter_pedestal",
-        type=mujoco.mjtGeom.mjGEOM_CYLINDER,
-        size=[0.22, BAXTER_BASE[2] / 2 - 0.05, 0],
-        pos=[BAXTER_BASE[0] - 0.05, BAXTER_BASE[1], BAXTER_BASE[2] / 2 - 0.05],
-        rgba=[0.2, 0.2, 0.22, 1.0],
-        contype=0,
-        conaffinity=0,
-    )
-    frame = spec.worldbody.add_frame(pos=list(BAXTER_BASE))
-    frame.attach_body(robot.worldbody.first_body(), PREFIX, "")
-    for hand in ("left", "right"):
-        for link in obj.links:
-            eq = spec.add_equality()
-            eq.name = f"weld_{hand}_{link}"
-            eq.type = mujoco.mjtEq.mjEQ_WELD
-            eq.objtype = mujoco.mjtObj.mjOBJ_BODY
-            eq.name1, eq.name2 = f"{PREFIX}{hand}_hand", link
-            eq.active = False
-            eq.solref = [0.005, 1.0]
 
 
 class BaxterHands(Hands):

@@ -45,7 +45,8 @@ def arm_geoms(
     model: mujoco.MjModel, hand: str, links: list[str], prefix: str = "baxter_"
 ) -> ArmGeoms:
     """Classify the model's geoms for ``hand`` (``left``/``right``). Robot collision geoms are
-    those :func:`artiplan.world.baxter.attach_baxter` moved to group 3 (robosuite's group 0)."""
+    those :func:`artiplan.world.baxter_model.attach_baxter` moved to group 3 (robosuite's
+    group 0)."""
     other = "right" if hand == "left" else "left"
     arm: list[int] = []
     gripper: list[int] = []
@@ -134,7 +135,6 @@ def arm_contacts(model: mujoco.MjModel, data: mujoco.MjData, geoms: ArmGeoms) ->
     """Number of (arm geom, torso/other-arm/scene geom) pairs in penetration now."""
     pairs = _pairs(model, data, geoms, None, False, 0.01)
     return sum(mujoco.mj_geomDistance(model, data, a, b, 0.01, None) < 0.0 for a, b in pairs)
-
 
 
 def repulsion(
