@@ -15,6 +15,7 @@ import argparse
 import json
 import statistics
 import time
+from dataclasses import replace
 from pathlib import Path
 
 
@@ -34,6 +35,8 @@ def main() -> None:
                     help="Baxter arms approach their grasps in this many seconds")
     ap.add_argument("--no-compensate", action="store_true",
                     help="dispatch starts at their planned times (the approach delays them)")
+    ap.add_argument("--fallback-after", type=int, default=None,
+                    help="switch to NG from this many re-plans on (default: LoopConfig's)")
     ap.add_argument("--start", type=int, default=1, help="first task index")
     ap.add_argument("-o", "--out", type=Path, required=True)
     args = ap.parse_args()
@@ -57,6 +60,8 @@ def main() -> None:
     config = LoopConfig(encoding=enc, interventions=ivs, plan_tolerance_deg=args.plan_tol,
                         advance_latency=args.advance_latency,
                         compensate_approach=not args.no_compensate)
+    if args.fallback_after is not None:
+        config = replace(config, fallback_after=args.fallback_after)
     rows = []
     with args.out.open("a" if args.start > 1 else "w") as fh:
         for k in range(args.start, args.start + args.tasks):
