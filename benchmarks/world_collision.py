@@ -14,7 +14,7 @@ import time
 import numpy as np
 
 from artiplan.model import ArticulatedObject, direction_error, random_configuration
-from artiplan.world import baxter, make_world
+from artiplan.world import make_world
 from artiplan.world.collision import arm_geoms, clearance
 
 
@@ -29,10 +29,17 @@ def robot_and_scene(world, hand: str) -> tuple[float, float]:
     return no_links, clearance(world.model, world.data, geoms, held)[0]
 
 
-def case(n: int, seed: int) -> dict[str, float] | None:
+def case(n: int, seed: int, avoid: bool = True) -> dict[str, float] | None:
     rng = random.Random(seed)
     conf = random_configuration(n, rng)
-    world = make_world(ArticulatedObject(n), conf, hands="baxter", preset="stiff", seed=seed)
+    world = make_world(
+        ArticulatedObject(n),
+        conf,
+        hands="baxter",
+        preset="stiff",
+        seed=seed,
+        avoid_collisions=avoid,
+    )
     k = rng.randint(1, n - 1)
     plane = rng.choice(["z-axis", "xy-axes"])
     sign = rng.choice([1, -1])
@@ -62,9 +69,6 @@ def main() -> None:
         "--no-avoid", action="store_true", help="baseline: grasp choice and IK blind to obstacles"
     )
     args = parser.parse_args()
-    if args.no_avoid:
-        baxter.CLEARANCE_WEIGHT = 0.0
-        baxter.AVOID_GAIN = 0.0
     print(
         "| links | cases | unreachable | robot/scene min / median [m] | colliding (<0) |"
         " at grasp min / colliding | incl. object min [m] | colliding incl. object |"
@@ -73,7 +77,7 @@ def main() -> None:
     print("|---|---|---|---|---|---|---|---|---|---|")
     for n in (4, 6):
         t0 = time.perf_counter()
-        res = [case(n, s) for s in range(args.seeds)]
+        res = [case(n, s, avoid=not args.no_avoid) for s in range(args.seeds)]
         ok = [r for r in res if r is not None]
         rob = np.array([r["robot"] for r in ok])
         gr = np.array([r["grasp"] for r in ok])

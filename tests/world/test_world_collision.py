@@ -31,7 +31,7 @@ def test_clearance_sees_a_collision_and_ignores_the_mounted_shoulder() -> None:
 def test_baxter_grasps_are_collision_free_on_four_links(k: int, plane: str) -> None:
     obj = ArticulatedObject(4)
     conf = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
-    world = make_world(obj, conf, hands="baxter", preset="stiff")
+    world = make_world(obj, conf, hands="baxter", preset="stiff", avoid_collisions=True)
     world.hold_and_rotate(f"L{k}", f"L{k + 1}", plane, 1, 10.0)
     for hand in ("left", "right"):
         geoms = arm_geoms(world.model, hand, list(obj.links))

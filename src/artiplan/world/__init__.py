@@ -36,9 +36,11 @@ def make_world(
     seed: int = 0,
     perception: PerceptionConfig | None = None,
     approach_s: float = 0.0,
+    avoid_collisions: bool = False,
 ) -> World:
     """A world with named settings: ``preset`` stiff|loose, ``hands`` virtual|baxter
-    (``approach_s`` > 0: Baxter's arms move to each grasp in that many simulated seconds)."""
+    (``approach_s`` > 0: Baxter's arms move to each grasp in that many simulated seconds;
+    ``avoid_collisions``: Baxter's grasps chosen and solved clear of the torso, arms, table)."""
     from artiplan.world.presets import preset as get_preset
 
     config = WorldConfig(
@@ -53,6 +55,6 @@ def make_world(
             obj,
             conf,
             WorldConfig(config.physics, config.perception, seed, layout=baxter_layout(obj)),
-            BaxterHands(approach_s=approach_s),
+            BaxterHands(approach_s=approach_s, avoid_collisions=avoid_collisions),
         )
     raise ValueError(f"unknown hands {hands!r}; valid: virtual, baxter")

@@ -86,15 +86,23 @@ class BaxterHands(Hands):
     servo_gains = ServoGains(kp=1.0, ki=10.0)
 
     def __init__(
-        self, kp_scale: float = 30.0, damping_ratio: float = 1.0, approach_s: float = 0.0
+        self,
+        kp_scale: float = 30.0,
+        damping_ratio: float = 1.0,
+        approach_s: float = 0.0,
+        avoid_collisions: bool = False,
     ) -> None:
         """``kp_scale``: joint stiffness [N m/rad] per N m of motor limit; ``approach_s``: when
         > 0, the arms move to their grasps in this many simulated seconds (gravity acting)
-        instead of jumping there."""
+        instead of jumping there; ``avoid_collisions``: score grasps by arm clearance and push
+        the grasp IK away from obstacles. Off by default: with it on, the closed-loop demo on
+        Baxter lost its goal (grasps clear of the torso turned out worse for tracking the
+        rotation), and the loop's measured results were taken without it."""
         super().__init__()
         self.kp_scale = kp_scale
         self.damping_ratio = damping_ratio
         self.approach_s = approach_s
+        self.avoid_collisions = avoid_collisions
 
     def approach(self, pairs: list[tuple[str, str]], advance: Callable[[float], None]) -> None:
         """Move each (hand, link) arm to its grasp in ``approach_s`` seconds of simulation
@@ -302,7 +310,7 @@ class BaxterHands(Hands):
         best_score = np.inf
         q_now = self.data.qpos[self._q[hand]].copy()
         for index, (pos, quat) in enumerate(self.grasp_poses(hand, link)):
-            q = self.solve_ik(hand, pos, quat, iterations=150, avoid=link)
+            q = self.solve_ik(hand, pos, quat, iterations=150, avoid=self._avoid(link))
             miss = self._ik_miss(hand, pos, quat)  # leaves ik_data's kinematics at q
             for h, q_other in (others or {}).items():
                 if h != hand:
@@ -317,7 +325,8 @@ class BaxterHands(Hands):
                 score_sweep = 0.0
             # Prefer reachable, collision-free, away from limits, then close to where the arm
             # is now.
-            score = miss + CLEARANCE_WEIGHT * max(0.0, CLEARANCE_MARGIN - clear)
+            weight = CLEARANCE_WEIGHT if self.avoid_collisions else 0.0
+            score = miss + weight * max(0.0, CLEARANCE_MARGIN - clear)
             score += 1.0 if miss > REACH_TOLERANCE else 0.0
             score += 0.05 * max(0.0, LIMIT_MARGIN - room) + score_sweep
             score += 0.002 * float(np.linalg.norm(q - q_now))
@@ -325,6 +334,10 @@ class BaxterHands(Hands):
                 best, best_score = (q, pos, miss, index), score
         assert best is not None
         return best
+
+    def _avoid(self, link: str) -> str | None:
+        """The link the grasp IK may touch while it steers clear of the rest (None: no steering)."""
+        return link if self.avoid_collisions else None
 
     def _room(self, hand: str, q: Vec) -> float:
         """Smallest distance [rad] of ``q`` to a joint limit of ``hand``'s arm."""
@@ -364,7 +377,9 @@ class BaxterHands(Hands):
         if planned is not None and planned[0] == link:  # after an approach: same candidate
             pos, quat = self.grasp_poses(hand, link)[planned[1]]
             q_now = self.data.qpos[self._q[hand]].copy()
-            q = self.solve_ik(hand, pos, quat, iterations=150, start=q_now, avoid=link)
+            q = self.solve_ik(
+                hand, pos, quat, iterations=150, start=q_now, avoid=self._avoid(link)
+            )
             miss = self._ik_miss(hand, pos, quat)
         else:
             q, pos, miss = self._best_grasp(hand, link)
