@@ -107,3 +107,23 @@ def uacm_task(angle0: float = 90.0, acc: float = 2.0, threshold: float = 45.0) -
         "uacm", "p", FACTS, FLUENTS, frozenset(), (angle0, 10.0, 0.0, acc),
         Atom(DONE), (grab, observe), (landed, reset), (fall, accel),
     )
+
+
+#: A water tank (PDDL text): a process fills it, an overflow event halves the surplus.
+TANK = """
+(define (domain tank)
+  (:requirements :strips :numeric-fluents :time)
+  (:predicates (filling))
+  (:functions (level) (flow-rate))
+  (:action open :parameters () :precondition (not (filling)) :effect (filling))
+  (:action close :parameters () :precondition (filling) :effect (not (filling)))
+  (:process fill :parameters () :precondition (filling)
+    :effect (increase (level) (* #t (flow-rate))))
+  (:event overflow :parameters () :precondition (>= (level) 10)
+    :effect (and (decrease (level) 5) (increase (flow-rate) 1))))
+"""
+TANK_PROBLEM = """
+(define (problem t1) (:domain tank)
+  (:init (= (level) 7) (= (flow-rate) 2))
+  (:goal (> (level) 6.5)))
+"""

@@ -6,26 +6,11 @@ import csv
 from pathlib import Path
 
 import pytest
+from semantics_builders import TANK, TANK_PROBLEM
 
 from artiplan.cli import main
 
-DOMAIN = """
-(define (domain tank)
-  (:requirements :strips :numeric-fluents :time)
-  (:predicates (filling))
-  (:functions (level) (flow-rate))
-  (:action open :parameters () :precondition (not (filling)) :effect (filling))
-  (:action close :parameters () :precondition (filling) :effect (not (filling)))
-  (:process fill :parameters () :precondition (filling)
-    :effect (increase (level) (* #t (flow-rate))))
-  (:event overflow :parameters () :precondition (>= (level) 10)
-    :effect (and (decrease (level) 5) (increase (flow-rate) 1))))
-"""
-PROBLEM = """
-(define (problem t1) (:domain tank)
-  (:init (= (level) 7) (= (flow-rate) 2))
-  (:goal (> (level) 6.5)))
-"""
+DOMAIN, PROBLEM = TANK, TANK_PROBLEM
 
 
 @pytest.fixture

@@ -8,30 +8,13 @@ from __future__ import annotations
 import math
 
 import pytest
+from semantics_builders import TANK, TANK_PROBLEM
 
 from artiplan.encoding import EncodingOptions, domain_pddl, problem_pddl
 from artiplan.model import ArticulatedObject, Configuration
 from artiplan.pddl import load_task
 from artiplan.semantics import validate
 from artiplan.semantics.plan_io import parse_plan
-
-TANK = """
-(define (domain tank)
-  (:requirements :strips :numeric-fluents :time)
-  (:predicates (filling))
-  (:functions (level) (flow-rate))
-  (:action open :parameters () :precondition (not (filling)) :effect (filling))
-  (:action close :parameters () :precondition (filling) :effect (not (filling)))
-  (:process fill :parameters () :precondition (filling)
-    :effect (increase (level) (* #t (flow-rate))))
-  (:event overflow :parameters () :precondition (>= (level) 10)
-    :effect (and (decrease (level) 5) (increase (flow-rate) 1))))
-"""
-TANK_PROBLEM = """
-(define (problem t1) (:domain tank)
-  (:init (= (level) 7) (= (flow-rate) 2))
-  (:goal (> (level) 6.5)))
-"""
 
 
 def test_hand_written_domain_events_change_rates() -> None:
