@@ -406,13 +406,6 @@ class BaxterHands(Hands):
         self._grip_offset[hand] = (rel_pos, rel_quat)
         self._held[hand] = link
 
-    def release(self, hand: str) -> None:
-        self._check_hand(hand)
-        link = self._held[hand]
-        if link is not None:
-            self.data.eq_active[self._weld[(hand, link)]] = 0
-        self._held[hand] = None
-
     # -- motion --------------------------------------------------------------------------
     def command(self, hand: str, pos: Vec, quat: Vec) -> None:
         """Desired link pose -> desired hand pose (through the grip offset) -> IK target."""

@@ -30,8 +30,12 @@ class Hands(ABC):
     #: Gains of the world's pose servo that suit these hands.
     servo_gains: ServoGains = ServoGains()
 
+    data: mujoco.MjData  #: set by :meth:`bind`
+
     def __init__(self) -> None:
         self._held: dict[str, str | None] = {h: None for h in self.names}
+        #: (hand, link) -> id of the weld equality that is the grasp (set by :meth:`bind`).
+        self._weld: dict[tuple[str, str], int] = {}
 
     @property
     def kind(self) -> str:
@@ -46,9 +50,13 @@ class Hands(ABC):
     def grasp(self, hand: str, link: str) -> None:
         """Close ``hand`` on ``link`` where the link is now (weld from the current pose)."""
 
-    @abstractmethod
     def release(self, hand: str) -> None:
-        """Open ``hand``; the link it held becomes free."""
+        """Open ``hand``: switch off the weld that was the grasp; the link becomes free."""
+        self._check_hand(hand)
+        link = self._held[hand]
+        if link is not None:
+            self.data.eq_active[self._weld[(hand, link)]] = 0
+        self._held[hand] = None
 
     @abstractmethod
     def command(self, hand: str, pos: Vec, quat: Vec) -> None:
@@ -103,13 +111,6 @@ class VirtualHands(Hands):
         self.model.eq_data[eq, 6:10] = (1.0, 0.0, 0.0, 0.0)
         self.data.eq_active[eq] = 1
         self._held[hand] = link
-
-    def release(self, hand: str) -> None:
-        self._check_hand(hand)
-        link = self._held[hand]
-        if link is not None:
-            self.data.eq_active[self._weld[(hand, link)]] = 0
-        self._held[hand] = None
 
     def command(self, hand: str, pos: Vec, quat: Vec) -> None:
         mid = self._mocap[hand]
