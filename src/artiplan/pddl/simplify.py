@@ -25,38 +25,34 @@ _COMPARE: dict[str, Callable[[float, float], bool]] = {
 
 def make_and(parts: Iterable[t.Condition]) -> t.Condition:
     """``And`` without ``TRUE`` parts, flattened; ``FALSE`` if any part is ``FALSE``."""
-    out: list[t.Condition] = []
-    for p in parts:
-        if isinstance(p, t.Truth):
-            if not p.value:
-                return t.FALSE
-            continue
-        if isinstance(p, t.And):
-            out.extend(p.parts)
-        else:
-            out.append(p)
-    out = list(dict.fromkeys(out))
-    if not out:
-        return t.TRUE
-    return out[0] if len(out) == 1 else t.And(tuple(out))
+    return _junction(parts, t.And, absorbing=False)
 
 
 def make_or(parts: Iterable[t.Condition]) -> t.Condition:
     """``Or`` without ``FALSE`` parts, flattened; ``TRUE`` if any part is ``TRUE``."""
+    return _junction(parts, t.Or, absorbing=True)
+
+
+def _junction(
+    parts: Iterable[t.Condition], kind: type[t.And] | type[t.Or], absorbing: bool
+) -> t.Condition:
+    """A flattened, duplicate-free ``kind`` of ``parts``: a constant equal to ``absorbing``
+    decides the whole, the other constant drops out (and is the value of an empty one)."""
+    decided, neutral = (t.TRUE, t.FALSE) if absorbing else (t.FALSE, t.TRUE)
     out: list[t.Condition] = []
     for p in parts:
         if isinstance(p, t.Truth):
-            if p.value:
-                return t.TRUE
+            if p.value == absorbing:
+                return decided
             continue
-        if isinstance(p, t.Or):
+        if isinstance(p, kind):
             out.extend(p.parts)
         else:
             out.append(p)
     out = list(dict.fromkeys(out))
     if not out:
-        return t.FALSE
-    return out[0] if len(out) == 1 else t.Or(tuple(out))
+        return neutral
+    return out[0] if len(out) == 1 else kind(tuple(out))
 
 
 def make_not(c: t.Condition) -> t.Condition:
