@@ -12,6 +12,7 @@ from __future__ import annotations
 import dataclasses
 
 from artiplan.pddl.task import TRUE, Task
+from artiplan.search.compiled import is_noop
 from artiplan.semantics.plan import Plan, TimedAction
 from artiplan.semantics.plan_io import parse_enhsp_output, parse_plan
 
@@ -70,15 +71,7 @@ def close_at_end(plan: Plan, task: Task) -> Plan:
     last = max((a.time for a in plan.actions), default=0.0)
     if plan.end is None or plan.end <= last + 1e-9:
         return plan
-    noop = next(
-        (
-            a
-            for a in task.actions
-            if a.precondition == TRUE
-            and not (a.effect.add or a.effect.delete or a.effect.numeric or a.effect.conditional)
-        ),
-        None,
-    )
+    noop = next((a for a in task.actions if a.precondition == TRUE and is_noop(a)), None)
     if noop is None:
         return plan
     close = TimedAction(max(plan.end, last + SEQUENCE_GAP), noop.name, noop.args)
