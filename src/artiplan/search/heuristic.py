@@ -173,6 +173,28 @@ class RateHeuristic(SideEffects):
             self.eff_lits.append(tuple(sorted(adds)) + tuple(n + f for f in sorted(dels)))
             for lit in pre:
                 self.lit_users[lit].append(a.index)
+        # Events that unblock actions (they delete a fact some action needs false, e.g. the
+        # hands' reach timer's ``hands-ready``) are achievers too, free: they fire by
+        # themselves once their fact preconditions hold (their clocks are left to the search's
+        # own time). Without them every state in which such a fact holds looks dead, and the
+        # search avoids ever reaching it (e.g. never releasing the hands).
+        blocking = 0
+        for a in self.ct.actions:
+            blocking |= a.forb
+        self.n_actions = len(self.ct.actions)
+        #: Relaxed operator index - n_actions -> index of the event in ``ct.events``.
+        self.relaxed_events: list[int] = []
+        for ev in self.ct.events:
+            eff_src = self.ct.task.events[ev.index].effect
+            dels = set(eff_src.delete)
+            if not any(blocking >> f & 1 for f in dels):
+                continue
+            adds = set(eff_src.add) | {f for ce in eff_src.conditional for f in ce.effect.add}
+            self.relaxed_events.append(ev.index)
+            self.pre_lits.append(self._lits(ev.req, ev.forb))
+            self.eff_lits.append(tuple(sorted(adds)) + tuple(n + f for f in sorted(dels)))
+            for lit in self.pre_lits[-1]:
+                self.lit_users[lit].append(len(self.pre_lits) - 1)
 
     def _jumps(self) -> dict[int, tuple[Jump, ...]]:
         """Events that read one fluent and shift or set it: wrap-arounds."""
@@ -208,7 +230,7 @@ class RateHeuristic(SideEffects):
         acc = [0.0] * len(self.pre_lits)
         for a, pre in enumerate(self.pre_lits):
             if not pre:
-                self._achieve(a, 1.0, cost, supp, heap)
+                self._achieve(a, self._op_cost(a), cost, supp, heap)
         heapq.heapify(heap)
         done = [False] * (2 * n)
         while heap:
@@ -220,8 +242,12 @@ class RateHeuristic(SideEffects):
                 remaining[a] -= 1
                 acc[a] += c
                 if remaining[a] == 0:
-                    self._achieve(a, acc[a] + 1.0, cost, supp, heap)
+                    self._achieve(a, acc[a] + self._op_cost(a), cost, supp, heap)
         return cost, supp
+
+    def _op_cost(self, a: int) -> float:
+        """Cost of relaxed operator ``a``: 1 for an action, 0 for an unblocking event."""
+        return 1.0 if a < self.n_actions else 0.0
 
     def _achieve(
         self, a: int, ca: float, cost: list[float], supp: list[int], heap: list[tuple[float, int]]
@@ -340,6 +366,9 @@ class RateHeuristic(SideEffects):
             if cost[lit] == 0.0 or supp[lit] < 0:
                 continue
             a = supp[lit]
+            if a >= self.n_actions:  # an event: not in the plan, its preconditions are
+                self._relaxed_plan(self.pre_lits[a], costs, plan, preferred)
+                continue
             if a in plan:
                 continue
             plan.add(a)

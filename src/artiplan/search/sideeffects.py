@@ -22,6 +22,8 @@ class SideEffects:
     groups: list  # GoalGroup (defined with the heuristic)
     jumps: dict[int, tuple[Jump, ...]]
     pre_lits: list[tuple[int, ...]]
+    n_actions: int
+    relaxed_events: list[int]
     proc_lits: list[tuple[int, ...]]
     active_fn: Callable[[int, tuple[float, ...]], tuple[int, ...]] | None
     damage_cost: float
@@ -83,7 +85,9 @@ class SideEffects:
         if found is None:
             facts, values, _ = self._state
             for a in chain:
-                facts, values = self.ct.actions[a].effect(facts, values)
+                op = (self.ct.actions[a] if a < self.n_actions
+                      else self.ct.events[self.relaxed_events[a - self.n_actions]])
+                facts, values = op.effect(facts, values)
             assert self.active_fn is not None
             found = self._after[chain] = self._moves_of(self.active_fn(facts, values))
         return found
