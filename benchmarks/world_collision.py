@@ -1,7 +1,8 @@
 """Arm clearance of Baxter's grasps (issue 6): distance from each arm to the torso, the other
-arm, pedestal/table/fixture and the object, at the grasp and after a 30 deg rotation.
+arm, pedestal/table/fixture and the object, at the grasp and after a 30 deg rotation; held
+link drift, rotation reached, and the wall time of choosing the grasps.
 
-Run: .venv/bin/python benchmarks/world_collision.py [--seeds N]
+Run: .venv/bin/python benchmarks/world_collision.py [--seeds N] [--links 4 6] [--no-avoid]
 Prints a markdown table (paste into benchmarks/results/world.md).
 """
 
@@ -18,77 +19,86 @@ from artiplan.world import make_world
 from artiplan.world.collision import arm_geoms, clearance
 
 
-def robot_and_scene(world, hand: str) -> tuple[float, float]:
+def robot_and_scene(world, hand: str, verbose: bool) -> tuple[float, float]:
     """(clearance to torso/other arm/scene [m], clearance including the object's links [m])."""
     hands = world.hands
     geoms = arm_geoms(world.model, hand, list(world.obj.links))
     held = hands.held(hand)
     no_links, pair = clearance(world.model, world.data, geoms, held, with_links=False)
-    if no_links < 0:
+    if no_links < 0 and verbose:
         print(f"  {hand}: {pair} {no_links:.3f} t={world.time:.1f}")
     return no_links, clearance(world.model, world.data, geoms, held)[0]
 
 
-def case(n: int, seed: int, avoid: bool = True) -> dict[str, float] | None:
+def case(n: int, seed: int, avoid: bool, verbose: bool) -> dict[str, float] | None:
     rng = random.Random(seed)
     conf = random_configuration(n, rng)
     world = make_world(
-        ArticulatedObject(n),
-        conf,
-        hands="baxter",
-        preset="stiff",
-        seed=seed,
+        ArticulatedObject(n), conf, hands="baxter", preset="stiff", seed=seed,
         avoid_collisions=avoid,
     )
     k = rng.randint(1, n - 1)
     plane = rng.choice(["z-axis", "xy-axes"])
     sign = rng.choice([1, -1])
-    try:
+    t0 = time.perf_counter()
+    try:  # without an approach, hold_and_rotate is the grasp choice (assign + grasp)
         world.hold_and_rotate(f"L{k}", f"L{k + 1}", plane, sign, 10.0)
-    except RuntimeError:
+    except RuntimeError as exc:
+        if verbose:
+            print(f"  seed {seed}: {exc}")
         return None
+    choice = time.perf_counter() - t0
     hands = ("left", "right") if k > 1 else (world._motion.hand,)
-    at_grasp = [robot_and_scene(world, h) for h in hands]
+    at_grasp = [robot_and_scene(world, h, verbose) for h in hands]
     start = world.true_configuration()
     world.run_until(world.time + 3.0)
-    after = [robot_and_scene(world, h) for h in hands]
+    after = [robot_and_scene(world, h, verbose) for h in hands]
     world.stop(release=False)
     end = world.true_configuration()
+    expected = start.with_angle(k + 1, plane, start.angle(k + 1, plane) + 30.0 * sign)
     return {
         "grasp": min(c[0] for c in at_grasp),
-        "robot": min(c[0] for c in at_grasp + after),
+        "after": min(c[0] for c in after),
         "all": min(c[1] for c in at_grasp + after),
         "drift": float(direction_error(start, end)[k - 1]),
+        "miss": float(direction_error(expected, end)[k]),
+        "choice": choice,
     }
 
 
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--seeds", type=int, default=12)
+    parser.add_argument("--links", type=int, nargs="+", default=[4, 6])
     parser.add_argument(
         "--no-avoid", action="store_true", help="baseline: grasp choice and IK blind to obstacles"
     )
+    parser.add_argument("-v", "--verbose", action="store_true")
     args = parser.parse_args()
     print(
-        "| links | cases | unreachable | robot/scene min / median [m] | colliding (<0) |"
-        " at grasp min / colliding | incl. object min [m] | colliding incl. object |"
-        " drift>0.5 | wall [s] |"
+        "| links | cases | unreachable | colliding at grasp | colliding after rotation |"
+        " colliding (either) | robot/scene min / median [m] | colliding incl. object |"
+        " drift>0.5 | reached within 2 | grasp choice mean / max [s] | wall [s] |"
     )
-    print("|---|---|---|---|---|---|---|---|---|---|")
-    for n in (4, 6):
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
+    for n in args.links:
         t0 = time.perf_counter()
-        res = [case(n, s, avoid=not args.no_avoid) for s in range(args.seeds)]
+        res = [case(n, s, not args.no_avoid, args.verbose) for s in range(args.seeds)]
         ok = [r for r in res if r is not None]
-        rob = np.array([r["robot"] for r in ok])
         gr = np.array([r["grasp"] for r in ok])
+        af = np.array([r["after"] for r in ok])
+        rob = np.minimum(gr, af)
         alls = np.array([r["all"] for r in ok])
         drift = np.array([r["drift"] for r in ok])
+        miss = np.array([r["miss"] for r in ok])
+        choice = np.array([r["choice"] for r in ok])
         print(
-            f"| {n} | {len(res)} | {len(res) - len(ok)} |"
-            f" {rob.min():.3f} / {np.median(rob):.3f} | {int((rob < 0).sum())} |"
-            f" {gr.min():.3f} / {int((gr < 0).sum())} | {alls.min():.3f} |"
-            f" {int((alls < 0).sum())} | {int((drift > 0.5).sum())} |"
-            f" {time.perf_counter() - t0:.0f} |"
+            f"| {n} | {len(res)} | {len(res) - len(ok)} | {int((gr < 0).sum())} |"
+            f" {int((af < 0).sum())} | {int((rob < 0).sum())} |"
+            f" {rob.min():.3f} / {np.median(rob):.3f} | {int((alls < 0).sum())} |"
+            f" {int((drift > 0.5).sum())} | {int((miss < 2.0).sum())} |"
+            f" {choice.mean():.2f} / {choice.max():.2f} | {time.perf_counter() - t0:.0f} |",
+            flush=True,
         )
 
 

@@ -31,16 +31,22 @@ from artiplan.world.baxter_model import (  # noqa: F401 - re-exported (public na
     baxter_layout,
     baxter_xml_path,
 )
-from artiplan.world.collision import ArmGeoms, arm_geoms, clearance, repulsion
+from artiplan.world.collision import ArmGeoms, arm_geoms
+from artiplan.world.grasping import (  # noqa: F401 - re-exported (public names)
+    REACH_TOLERANCE,
+    SWEEP_DEG,
+    TRACK_NULLSPACE_GAIN,
+    Candidate,
+    GraspChoice,
+    OutOfReachError,
+)
 from artiplan.world.hands import Hands
-from artiplan.world.rotations import Vec, quat_axis_angle, quat_conj, quat_mul, quat_to_mat
+from artiplan.world.rotations import Vec, quat_conj, quat_mul, quat_to_mat
 from artiplan.world.servo import ServoGains
 
 ARM_JOINTS = ("s0", "s1", "e0", "e1", "w0", "w1", "w2")
 #: A comfortable start: elbows bent, hands in front of the torso.
 HOME = (0.0, -0.55, 0.0, 1.2, 0.0, 0.9, 0.0)
-#: A grasp whose IK solution misses the grasp point by more than this [m] is refused.
-REACH_TOLERANCE = 0.01
 #: Interval [s] between joint-target updates of an approach motion.
 APPROACH_DT = 0.02
 #: Time [s] the arms get to settle on their grasps after an approach.
@@ -49,36 +55,16 @@ APPROACH_SETTLE_S = 0.2
 #: this many simulated seconds.
 RETREAT_M = 0.1
 RETREAT_S = 0.5
-#: Pull of the IK's null-space term toward mid-range joint angles [rad per iteration].
-NULLSPACE_GAIN = 0.05
-#: The same while tracking, called every 2 ms step: small, or the arm's self-motion outruns
-#: its motors (0.05 per call saturated every joint).
-TRACK_NULLSPACE_GAIN = 0.0005
-#: Grasps with a joint closer than this to a limit [rad] score worse (less room to rotate).
-LIMIT_MARGIN = 0.3
-#: The rotating hand's grasps are checked for joint-limit room this far [deg] into a turn
-#: either way (the planner's rotations are tens of degrees).
-SWEEP_DEG = 30.0
-#: Score per radian of missing room in that sweep (0.3 rad short ~ a 3 cm miss).
-SWEEP_WEIGHT = 0.1
-#: Grasps whose arm comes closer than this [m] to the torso, the other arm, the pedestal,
-#: table, fixture or another link score worse, by CLEARANCE_WEIGHT per metre inside it (a
-#: candidate 1 cm in collision scores like one missing its grasp point by 4 cm).
-CLEARANCE_MARGIN = 0.02
-CLEARANCE_WEIGHT = 4.0
-#: The grasp IK's null-space push away from obstacles nearer than AVOID_MARGIN [m]: gain
-#: [rad per metre of intrusion per iteration], recomputed every AVOID_EVERY iterations (each
-#: check costs a few hundred geom distances).
-AVOID_GAIN = 2.0
-AVOID_MARGIN = 0.05
-AVOID_EVERY = 10
+#: An approach first backs every opened hand whose grasp point is nearer than RETREAT_NEAR
+#: [m] to a link APPROACH_RETREAT_M [m] along its approach axis, in APPROACH_RETREAT_S [s].
+RETREAT_NEAR = 0.06
+APPROACH_RETREAT_M = 0.06
+APPROACH_RETREAT_S = 0.25
+#: Joint configurations checked for clearance along an approach (evenly spaced, ends excluded).
+PATH_CHECKS = 4
 
 
-class OutOfReachError(RuntimeError):
-    """Baxter cannot put a hand on the link (use virtual hands for long chains)."""
-
-
-class BaxterHands(Hands):
+class BaxterHands(GraspChoice, Hands):
     """Baxter's two arms as hands: IK + joint PD with bias compensation, welds as grasps."""
 
     #: The arm adds its own lag: gentler outer-loop gains than the virtual hands' (measured:
@@ -94,29 +80,84 @@ class BaxterHands(Hands):
     ) -> None:
         """``kp_scale``: joint stiffness [N m/rad] per N m of motor limit; ``approach_s``: when
         > 0, the arms move to their grasps in this many simulated seconds (gravity acting)
-        instead of jumping there; ``avoid_collisions``: score grasps by arm clearance and push
-        the grasp IK away from obstacles. Off by default: with it on, the closed-loop demo on
-        Baxter lost its goal (grasps clear of the torso turned out worse for tracking the
-        rotation), and the loop's measured results were taken without it."""
+        instead of jumping there; ``avoid_collisions``: score grasps by arm clearance (at the
+        grasp and over the rotation's sweep) and push the grasp IK away from obstacles."""
         super().__init__()
         self.kp_scale = kp_scale
         self.damping_ratio = damping_ratio
         self.approach_s = approach_s
         self.avoid_collisions = avoid_collisions
 
+    # -- motions between grasps ------------------------------------------------------------
     def approach(self, pairs: list[tuple[str, str]], advance: Callable[[float], None]) -> None:
-        """Move each (hand, link) arm to its grasp in ``approach_s`` seconds of simulation
-        (joint-space, smooth), advancing the world with ``advance(dt)``; the final grasp
-        corrects what the falling links moved meanwhile."""
+        """Move each (hand, link) arm to its grasp in simulated time, advancing the world with
+        ``advance(dt)``: first every opened hand still near the object backs off
+        :data:`APPROACH_RETREAT_M` along its approach axis (:data:`APPROACH_RETREAT_S`), then
+        the arms move to the grasps :meth:`assign` chose (joint-space, smooth) in
+        ``approach_s`` seconds, then settle; the final grasp corrects what the falling links
+        moved meanwhile. Nothing happens when ``approach_s`` is 0 (the arms jump at grasp)."""
         if self.approach_s <= 0:
             return
-        starts = {h: self.data.qpos[self._q[h]].copy() for h, _ in pairs}
         goals: dict[str, Vec] = {}
-        for h, link in pairs:  # the second arm's grasp avoids the first arm's goal
-            q, _, _, index = self._search_grasp(h, link, goals)
-            goals[h] = q
-            self._planned[h] = (link, index)  # the grasp then keeps this candidate
-        self._move(starts, goals, self.approach_s, advance)
+        for h, link in pairs:
+            c = self._chosen(h, link)
+            goals[h] = c.q
+            self._planned[h] = (link, c.index)  # the grasp then keeps this candidate
+        starts = {h: self.data.qpos[self._q[h]].copy() for h in self.names}
+        near = [h for h in self.names if self._held[h] is None and self._near_object(h)]
+        if near:
+            away = {h: self._backed_off(h, APPROACH_RETREAT_M) for h in near}
+            self._move({h: starts[h] for h in near}, away, APPROACH_RETREAT_S, advance, 0.0)
+            starts.update(away)
+        for h in goals:
+            self.last_approach_clearance[h] = self._path_clearance(h, starts, goals)
+        self._move({h: starts[h] for h in goals}, goals, self.approach_s, advance)
+
+    def _chosen(self, hand: str, link: str) -> Candidate:
+        """The grasp :meth:`assign` chose for (hand, link) if it is still current, else the
+        best one now."""
+        plan = self._plan.get(hand)
+        if plan is not None and plan[0].link == link and plan[1] == self.data.time:
+            return plan[0]
+        return self.best_grasp(hand, link)
+
+    def _near_object(self, hand: str) -> bool:
+        """Whether ``hand``'s grasp point is within :data:`RETREAT_NEAR` of a link."""
+        r_h = self.data.xmat[self._hand[hand]].reshape(3, 3)
+        point = self.data.xpos[self._hand[hand]] + self._depth * r_h[:, 2]
+        for link, gid in self.geoms[hand].links.items():
+            b = self.model.body(link).id
+            base, u = self.data.xpos[b], -self.data.xmat[b].reshape(3, 3)[:, 2]
+            length = 2.0 * float(self.model.geom_size[gid, 1])
+            t = float(np.clip(np.dot(point - base, u), 0.0, length))
+            if np.linalg.norm(point - base - t * u) < RETREAT_NEAR:
+                return True
+        return False
+
+    def _backed_off(self, hand: str, distance: float) -> Vec:
+        """Joint angles [rad] putting ``hand`` ``distance`` [m] back along its approach axis."""
+        r_h = self.data.xmat[self._hand[hand]].reshape(3, 3)
+        pos = self.data.xpos[self._hand[hand]] - distance * r_h[:, 2]
+        start = self.data.qpos[self._q[hand]].copy()
+        quat = self.data.xquat[self._hand[hand]].copy()
+        return self.solve_ik(hand, pos, quat, iterations=100, start=start)
+
+    def _path_clearance(self, hand: str, starts: dict[str, Vec], goals: dict[str, Vec]) -> float:
+        """Smallest clearance [m] of ``hand``'s arm to the torso, the other arm and the scene
+        at :data:`PATH_CHECKS` configurations along the joint-space path (both arms moving)."""
+        from artiplan.world.collision import clearance
+
+        d = self.ik_data
+        best = np.inf
+        for i in range(1, PATH_CHECKS + 1):
+            x = i / (PATH_CHECKS + 1)
+            s = x * x * (3.0 - 2.0 * x)
+            d.qpos[:] = self.data.qpos
+            for h, q in starts.items():
+                d.qpos[self._q[h]] = q + s * (goals[h] - q) if h in goals else q
+            mujoco.mj_kinematics(self.model, d)
+            best = min(best, clearance(self.model, d, self.geoms[hand], None, False)[0])
+        return float(best)
 
     def retreat(
         self,
@@ -127,19 +168,14 @@ class BaxterHands(Hands):
     ) -> None:
         """Back each of ``hands`` (opened first if it still holds) ``distance`` [m] away along
         its approach axis in ``duration_s`` simulated seconds, advancing the world with
-        ``advance(dt)``, so the next approach starts clear of the object. The world does not
-        call this itself: callers that simulate motions between grasps do."""
+        ``advance(dt)``. :meth:`approach` does a shorter one itself."""
         starts, goals = {}, {}
         for h in hands:
             self._check_hand(h)
             if self._held[h] is not None:
                 self.release(h)
-            r_h = self.data.xmat[self._hand[h]].reshape(3, 3)
-            pos = self.data.xpos[self._hand[h]] - distance * r_h[:, 2]
             starts[h] = self.data.qpos[self._q[h]].copy()
-            goals[h] = self.solve_ik(
-                h, pos, self.data.xquat[self._hand[h]].copy(), iterations=100, start=starts[h]
-            )
+            goals[h] = self._backed_off(h, distance)
         self._move(starts, goals, duration_s, advance)
 
     def _move(
@@ -148,9 +184,10 @@ class BaxterHands(Hands):
         goals: dict[str, Vec],
         duration_s: float,
         advance: Callable[[float], None],
+        settle_s: float = APPROACH_SETTLE_S,
     ) -> None:
         """Joint-space smoothstep from ``starts`` to ``goals`` in ``duration_s`` simulated
-        seconds, then :data:`APPROACH_SETTLE_S` of settling."""
+        seconds, then ``settle_s`` of settling."""
         n = max(1, int(round(duration_s / APPROACH_DT)))
         dt = duration_s / n
         for i in range(1, n + 1):
@@ -163,7 +200,8 @@ class BaxterHands(Hands):
             advance(dt)
         for h in goals:
             self._target_qd[h] = np.zeros(len(ARM_JOINTS))
-        advance(APPROACH_SETTLE_S)
+        if settle_s > 0:
+            advance(settle_s)
 
     def extend_spec(self, spec: mujoco.MjSpec, obj: ArticulatedObject) -> None:
         attach_baxter(spec, obj)
@@ -172,8 +210,10 @@ class BaxterHands(Hands):
         self.model, self.data = model, data
         self.ik_data = mujoco.MjData(model)
         self._planned: dict[str, tuple[str, int]] = {}
-        self._rotating: str | None = None
-        self._grasp_cache: dict[tuple[object, ...], tuple[Vec, Vec, float]] = {}
+        self._plan: dict[str, tuple[Candidate, float]] = {}
+        self._cand_cache: dict[tuple[object, ...], list[Candidate]] = {}
+        self._roles = ("", "")
+        self._clamped = obj.links[0]
         self.geoms: dict[str, ArmGeoms] = {
             h: arm_geoms(model, h, list(obj.links), PREFIX) for h in self.names
         }
@@ -245,144 +285,19 @@ class BaxterHands(Hands):
         self._target_qd = {h: np.zeros(len(ARM_JOINTS)) for h in self.names}
         #: How far [m] each hand jumped at its last grasp (0 after a perfect approach).
         self.last_jump_m = {h: 0.0 for h in self.names}
+        #: Smallest arm clearance [m] (torso, other arm, scene) met at the intermediate
+        #: configurations of the last approach (DIST_MAX when nothing is near), per hand.
+        self.last_approach_clearance: dict[str, float] = {}
 
     # -- grasping ------------------------------------------------------------------------
-    def assign(self, hold_link: str, rotate_link: str) -> tuple[str, str]:
-        """Which arm holds and which rotates, chosen by reach (the pairing with the smaller
-        worse IK miss). Remembers ``rotate_link``: its grasps are scored over the rotation."""
-        self._rotating = rotate_link
-        straight = max(
-            self._best_grasp("left", hold_link)[2], self._best_grasp("right", rotate_link)[2]
-        )
-        swapped = max(
-            self._best_grasp("right", hold_link)[2], self._best_grasp("left", rotate_link)[2]
-        )
-        return ("left", "right") if straight <= swapped else ("right", "left")
-
-    def _centre(self, link: str) -> Vec:
-        b = self.model.body(link).id
-        half = 0.5 * float(self.model.geom(f"{link}_geom").size[1]) * 2.0
-        return self.data.xpos[b] - half * self.data.xmat[b].reshape(3, 3)[:, 2]
-
-    def grasp_poses(self, hand: str, link: str, n_turns: int = 8) -> list[tuple[Vec, Vec]]:
-        """Candidate hand poses at the link's centre: the hand's z axis (its approach)
-        perpendicular to the link, turned about it in ``n_turns`` steps, x along +-link."""
-        b = self.model.body(link).id
-        u = -self.data.xmat[b].reshape(3, 3)[:, 2]
-        centre = self._centre(link)
-        shoulder = self.data.xpos[self.model.body(f"{PREFIX}{hand}_upper_shoulder").id]
-        z0 = centre - shoulder
-        z0 -= np.dot(z0, u) * u
-        if np.linalg.norm(z0) < 1e-6:
-            z0 = np.cross(u, [1.0, 0.0, 0.0])
-        z0 /= np.linalg.norm(z0)
-        poses = []
-        for i in range(n_turns):
-            a = 2.0 * np.pi * i / n_turns
-            z = np.cos(a) * z0 + np.sin(a) * np.cross(u, z0)
-            for x in (u, -u):
-                mat = np.column_stack([x, np.cross(z, x), z])
-                quat = np.empty(4)
-                mujoco.mju_mat2Quat(quat, mat.ravel())
-                poses.append((centre - self._depth * z, quat))
-        return poses
-
-    def _best_grasp(
-        self, hand: str, link: str, others: dict[str, Vec] | None = None
-    ) -> tuple[Vec, Vec, float]:
-        """(joint angles, IK target position, miss [m]) of the best candidate grasp;
-        ``others``: joint angles of the other arm to assume (default: where it is now).
-        Cached per state: :meth:`assign` and :meth:`grasp` ask for the same grasps."""
-        key = (hand, link, self.data.time, self.data.qpos.tobytes(), repr(others))
-        cached = self._grasp_cache.get(key)
-        if cached is None:
-            cached = self._grasp_cache[key] = self._search_grasp(hand, link, others)[:3]
-            while len(self._grasp_cache) > 8:  # only the current motion's grasps matter
-                self._grasp_cache.pop(next(iter(self._grasp_cache)))
-        return cached
-
-    def _search_grasp(
-        self, hand: str, link: str, others: dict[str, Vec] | None
-    ) -> tuple[Vec, Vec, float, int]:
-        """Solve the IK of every candidate grasp pose and score it (see :meth:`_best_grasp`);
-        also returns the chosen candidate's index in :meth:`grasp_poses`."""
-        best: tuple[Vec, Vec, float, int] | None = None
-        best_score = np.inf
-        q_now = self.data.qpos[self._q[hand]].copy()
-        for index, (pos, quat) in enumerate(self.grasp_poses(hand, link)):
-            q = self.solve_ik(hand, pos, quat, iterations=150, avoid=self._avoid(link))
-            miss = self._ik_miss(hand, pos, quat)  # leaves ik_data's kinematics at q
-            for h, q_other in (others or {}).items():
-                if h != hand:
-                    self.ik_data.qpos[self._q[h]] = q_other
-                    mujoco.mj_kinematics(self.model, self.ik_data)
-            clear = clearance(self.model, self.ik_data, self.geoms[hand], held=link)[0]
-            room = self._room(hand, q)
-            if link == self._rotating and miss <= REACH_TOLERANCE:
-                sweep = self._sweep_room(hand, link, pos, quat, q)
-                score_sweep = SWEEP_WEIGHT * max(0.0, LIMIT_MARGIN - sweep)
-            else:
-                score_sweep = 0.0
-            # Prefer reachable, collision-free, away from limits, then close to where the arm
-            # is now.
-            weight = CLEARANCE_WEIGHT if self.avoid_collisions else 0.0
-            score = miss + weight * max(0.0, CLEARANCE_MARGIN - clear)
-            score += 1.0 if miss > REACH_TOLERANCE else 0.0
-            score += 0.05 * max(0.0, LIMIT_MARGIN - room) + score_sweep
-            score += 0.002 * float(np.linalg.norm(q - q_now))
-            if score < best_score:
-                best, best_score = (q, pos, miss, index), score
-        assert best is not None
-        return best
-
-    def _avoid(self, link: str) -> str | None:
-        """The link the grasp IK may touch while it steers clear of the rest (None: no steering)."""
-        return link if self.avoid_collisions else None
-
-    def _room(self, hand: str, q: Vec) -> float:
-        """Smallest distance [rad] of ``q`` to a joint limit of ``hand``'s arm."""
-        return float(np.minimum(q - self._lo[hand], self._hi[hand] - q).min())
-
-    def _sweep_room(self, hand: str, link: str, pos: Vec, quat: Vec, q: Vec) -> float:
-        """Joint-limit room [rad] left when the grasp (pos, quat) on ``link`` is turned by
-        +-SWEEP_DEG about the link's joint, about the vertical and the horizontal normal (the
-        two rotation planes); an unreachable turned pose counts as no room. A grasp whose
-        arm meets a limit mid-rotation drags the held link (the 1-in-12 failures)."""
-        pivot = self.data.xpos[self.model.body(link).id]
-        u = -self.data.xmat[self.model.body(link).id].reshape(3, 3)[:, 2]
-        normal = np.cross(u, [0.0, 0.0, 1.0])
-        axes = [np.array([0.0, 0.0, 1.0])]
-        if np.linalg.norm(normal) > 1e-3:
-            axes.append(normal / np.linalg.norm(normal))
-        room = np.inf
-        for axis in axes:
-            for sign in (1.0, -1.0):
-                turn = quat_axis_angle(axis, sign * np.radians(SWEEP_DEG))
-                t_pos = pivot + quat_to_mat(turn) @ (pos - pivot)
-                t_quat = quat_mul(turn, quat)
-                # Tracking-like: nearly no null-space drift (the servo's IK has almost none).
-                q_t = self.solve_ik(
-                    hand, t_pos, t_quat, iterations=40, start=q, nullspace=TRACK_NULLSPACE_GAIN
-                )
-                if self._ik_miss(hand, t_pos, t_quat) > REACH_TOLERANCE:
-                    return 0.0
-                room = min(room, self._room(hand, q_t))
-        return float(room)
-
     def grasp(self, hand: str, link: str) -> None:
+        """Close ``hand`` on ``link``: the candidate chosen by :meth:`assign` (re-solved from
+        where the arm is after an approach), else the best reachable one; raises
+        :class:`OutOfReachError` when no candidate reaches."""
         self._check_hand(hand)
         if self._held[hand] is not None:
             self.release(hand)
-        planned = self._planned.pop(hand, None)
-        if planned is not None and planned[0] == link:  # after an approach: same candidate
-            pos, quat = self.grasp_poses(hand, link)[planned[1]]
-            q_now = self.data.qpos[self._q[hand]].copy()
-            q = self.solve_ik(
-                hand, pos, quat, iterations=150, start=q_now, avoid=self._avoid(link)
-            )
-            miss = self._ik_miss(hand, pos, quat)
-        else:
-            q, pos, miss = self._best_grasp(hand, link)
+        q, miss = self._grasp_solution(hand, link)
         if miss > REACH_TOLERANCE:
             raise OutOfReachError(f"Baxter's {hand} hand cannot reach {link} ({miss:.3f} m short)")
         # The arm jumps the rest of the way to the grasp (all of it without an approach).
@@ -406,6 +321,25 @@ class BaxterHands(Hands):
         self._grip_offset[hand] = (rel_pos, rel_quat)
         self._held[hand] = link
 
+    def _grasp_solution(self, hand: str, link: str) -> tuple[Vec, float]:
+        """(joint angles [rad], miss [m]) of the grasp to close now."""
+        planned = self._planned.pop(hand, None)
+        plan = self._plan.pop(hand, None)
+        if planned is None and plan is not None and plan[0].link == link:
+            if plan[1] == self.data.time:  # nothing moved since assign: its solution holds
+                return plan[0].q, plan[0].miss
+            planned = (link, plan[0].index)
+        if planned is not None and planned[0] == link:  # after an approach: same candidate
+            pos, quat = self.grasp_poses(hand, link)[planned[1]]
+            q_now = self.data.qpos[self._q[hand]].copy()
+            avoid = link if self.avoid_collisions else None
+            q = self.solve_ik(hand, pos, quat, iterations=150, start=q_now, avoid=avoid)
+            miss = self.ik_miss(hand, pos, quat)
+            if miss <= REACH_TOLERANCE:
+                return q, miss
+        best = self.best_grasp(hand, link)  # any reachable candidate, from where it is now
+        return best.q, best.miss
+
     # -- motion --------------------------------------------------------------------------
     def command(self, hand: str, pos: Vec, quat: Vec) -> None:
         """Desired link pose -> desired hand pose (through the grip offset) -> IK target."""
@@ -420,62 +354,6 @@ class BaxterHands(Hands):
             start=self._target_q[hand],
             nullspace=TRACK_NULLSPACE_GAIN,
         )
-
-    def solve_ik(
-        self,
-        hand: str,
-        pos: Vec,
-        quat: Vec,
-        iterations: int = 50,
-        start: Vec | None = None,
-        damping: float = 1e-2,
-        nullspace: float = NULLSPACE_GAIN,
-        avoid: str | None = None,
-    ) -> Vec:
-        """Joint angles [rad] putting ``hand`` at (pos, quat): damped least squares. With
-        ``avoid`` (the link the hand will hold), the null space also pushes the arm away from
-        the torso, the other arm, the scene and the other links."""
-        m, d = self.model, self.ik_data
-        d.qpos[:] = self.data.qpos
-        qa, va, body = self._q[hand], self._v[hand], self._hand[hand]
-        if start is not None:
-            d.qpos[qa] = start
-        jp, jr = np.zeros((3, m.nv)), np.zeros((3, m.nv))
-        err = np.zeros(6)
-        q_err = np.empty(4)
-        push = np.zeros(len(qa))
-        for it in range(iterations):
-            mujoco.mj_kinematics(m, d)
-            mujoco.mj_comPos(m, d)
-            err[:3] = pos - d.xpos[body]
-            mujoco.mju_mulQuat(q_err, quat, quat_conj(d.xquat[body]))
-            mujoco.mju_quat2Vel(err[3:], q_err, 1.0)
-            if np.linalg.norm(err[:3]) < 1e-5 and np.linalg.norm(err[3:]) < 1e-4:
-                break
-            mujoco.mj_jacBody(m, d, jp, jr, body)
-            jac = np.vstack([jp[:, va], jr[:, va]])
-            jjt = jac @ jac.T + damping**2 * np.eye(6)
-            dq = jac.T @ np.linalg.solve(jjt, err)
-            # Null space: drift toward mid-range, away from joint limits (the arm has 7 dof).
-            mid = 0.5 * (self._lo[hand] + self._hi[hand])
-            toward = nullspace * (mid - d.qpos[qa]) / (self._hi[hand] - self._lo[hand])
-            if avoid is not None and it % AVOID_EVERY == 0:
-                push = AVOID_GAIN * repulsion(m, d, self.geoms[hand], va, avoid, AVOID_MARGIN)
-            toward = toward + push
-            dq += toward - jac.T @ np.linalg.solve(jjt, jac @ toward)
-            step = np.linalg.norm(dq)
-            if step > 0.2:  # rad: keep steps small so the linearisation holds
-                dq *= 0.2 / step
-            d.qpos[qa] = np.clip(d.qpos[qa] + dq, self._lo[hand], self._hi[hand])
-        return d.qpos[qa].copy()
-
-    def _ik_miss(self, hand: str, pos: Vec, quat: Vec) -> float:
-        """Pose error of the last IK solution: metres + 0.1 m per radian."""
-        mujoco.mj_kinematics(self.model, self.ik_data)
-        d_pos = float(np.linalg.norm(self.ik_data.xpos[self._hand[hand]] - pos))
-        q_err = quat_mul(quat, quat_conj(self.ik_data.xquat[self._hand[hand]]))
-        d_rot = 2.0 * float(np.arccos(min(1.0, abs(q_err[0]))))
-        return d_pos + 0.1 * d_rot
 
     def control(self, dt: float) -> None:
         """Servo set-points: the IK targets plus feed-forward; the motors' PD runs inside

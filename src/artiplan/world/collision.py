@@ -95,17 +95,24 @@ def _pairs(
     held: str | None,
     with_links: bool,
     margin: float,
+    with_other: bool = True,
+    with_body: bool = True,
 ) -> list[tuple[int, int]]:
     """(arm geom, obstacle geom) pairs to check whose bounding spheres come within
-    ``margin`` [m] (a vectorised pre-filter: most pairs are far apart)."""
+    ``margin`` [m] (a vectorised pre-filter: most pairs are far apart). ``with_body``: torso
+    and scene; ``with_other``: the other arm; ``with_links``: the object's links."""
     held_id = geoms.links.get(held, -1) if held is not None else -1
     links = tuple(geoms.links.values()) if with_links else ()
+    other = geoms.other if with_other else ()
+    scene = geoms.scene if with_body else ()
     pairs = []
     for a in geoms.arm:
-        torso = () if a in geoms.shoulder else geoms.torso
-        obstacles = np.array([*torso, *geoms.other, *geoms.scene, *links], dtype=int)
+        torso = () if a in geoms.shoulder or not with_body else geoms.torso
+        obstacles = np.array([*torso, *other, *scene, *links], dtype=int)
         if a in geoms.gripper:
             obstacles = obstacles[obstacles != held_id]
+        if obstacles.size == 0:
+            continue
         gap = np.linalg.norm(data.geom_xpos[obstacles] - data.geom_xpos[a], axis=1)
         gap -= model.geom_rbound[obstacles] + model.geom_rbound[a]
         pairs += [(a, int(b)) for b in obstacles[gap < margin]]
@@ -118,13 +125,16 @@ def clearance(
     geoms: ArmGeoms,
     held: str | None = None,
     with_links: bool = True,
+    with_other: bool = True,
+    with_body: bool = True,
 ) -> tuple[float, str]:
     """Smallest signed distance [m] (negative: penetration) from the arm to any obstacle in
     ``data``'s current kinematics (call ``mj_kinematics`` first), and the closest pair's names.
     The gripper may touch ``held`` (the link it grasps); distances above :data:`DIST_MAX` are
-    reported as DIST_MAX."""
+    reported as DIST_MAX. The flags choose the obstacles: the object's links, the other arm,
+    the torso and scene (pedestal, table, fixture)."""
     best, pair = DIST_MAX, ""
-    for a, b in _pairs(model, data, geoms, held, with_links, DIST_MAX):
+    for a, b in _pairs(model, data, geoms, held, with_links, DIST_MAX, with_other, with_body):
         dist = mujoco.mj_geomDistance(model, data, a, b, DIST_MAX, None)
         if dist < best:
             best, pair = dist, f"{model.geom(a).name}~{model.geom(b).name}"
@@ -144,15 +154,17 @@ def repulsion(
     dofs: np.ndarray,
     held: str | None = None,
     margin: float = 0.05,
+    with_other: bool = True,
 ) -> np.ndarray:
     """Joint-space direction (over ``dofs``) pushing the arm's geoms closer than ``margin`` [m]
     away from their obstacles: sum of J_p^T n (margin - distance), J_p the translational
     Jacobian of the arm's closest point, n the unit vector from the obstacle's closest point
-    to the arm geom's centre (defined in penetration too). Zero when everything is clear."""
+    to the arm geom's centre (defined in penetration too). Zero when everything is clear.
+    ``with_other`` False: ignore the other arm (whose final place the caller does not know)."""
     dq = np.zeros(len(dofs))
     fromto = np.zeros(6)
     jacp = np.zeros((3, model.nv))
-    for a, b in _pairs(model, data, geoms, held, True, margin):
+    for a, b in _pairs(model, data, geoms, held, True, margin, with_other):
         dist = mujoco.mj_geomDistance(model, data, a, b, margin, fromto)
         if dist >= margin:
             continue

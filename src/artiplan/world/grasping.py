@@ -1,0 +1,358 @@
+"""Grasp choice for Baxter's arms: candidate hand poses along a link, their inverse
+kinematics, and a score that puts reach first, then arm clearance, then joint-limit room.
+
+Candidates: grasp points at the link's centre and a quarter of the link further from the joint
+it shares with the other grasped link (more reach, more room between two hands on neighbouring
+links); at each point the hand's approach axis is perpendicular to the link, turned about it in
+8 steps, fingers either way (16 poses per point). The rotating hand's candidates are also
+solved at the grasp turned +-:data:`SWEEP_DEG` about the link's joint (both rotation planes).
+
+With ``avoid_collisions`` the grasp IK is pushed away from the torso, pedestal, table, fixture
+and other links, and the holding/rotating pair is chosen jointly: the arms' distance to each
+other at the grasps and at the turned poses (holding arm at its grasp) enter the score.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import mujoco
+import numpy as np
+
+from artiplan.world.collision import ArmGeoms, clearance, repulsion
+from artiplan.world.rotations import Vec, quat_axis_angle, quat_conj, quat_mul, quat_to_mat
+
+#: A grasp whose IK solution misses the grasp point by more than this [m] is refused.
+REACH_TOLERANCE = 0.01
+#: Score of an unreachable candidate (above any sum of the other terms: reach comes first).
+UNREACHABLE = 10.0
+#: Grasp points along the link [fraction of its length from the base-end joint]: the centre
+#: first, then a quarter length away from the joint shared with the other grasped link.
+CENTRE, OFF_CENTRE = 0.5, 0.25
+#: Pull of the IK's null-space term toward mid-range joint angles [rad per iteration].
+NULLSPACE_GAIN = 0.05
+#: The same while tracking, called every 2 ms step: small, or the arm's self-motion outruns
+#: its motors (0.05 per call saturated every joint).
+TRACK_NULLSPACE_GAIN = 0.0005
+#: Grasps with a joint closer than this to a limit [rad] score worse (less room to rotate).
+LIMIT_MARGIN = 0.3
+#: The rotating hand's grasps are checked this far [deg] into a turn either way (the
+#: planner's rotations are tens of degrees).
+SWEEP_DEG = 30.0
+#: Score per radian of missing room in that sweep (0.3 rad short ~ a 3 cm miss).
+SWEEP_WEIGHT = 0.1
+#: Grasps whose arm comes closer than this [m] to the torso, the other arm, the pedestal,
+#: table, fixture or another link score worse, by CLEARANCE_WEIGHT per metre inside it (a
+#: candidate 1 cm in collision scores like one missing its grasp point by 4 cm).
+CLEARANCE_MARGIN = 0.02
+CLEARANCE_WEIGHT = 4.0
+#: The grasp IK's null-space push away from obstacles nearer than AVOID_MARGIN [m]: gain
+#: [rad per metre of intrusion per iteration], recomputed every AVOID_EVERY iterations (each
+#: check costs a few hundred geom distances).
+AVOID_GAIN = 2.0
+AVOID_MARGIN = 0.05
+AVOID_EVERY = 10
+#: Candidates per hand tried jointly with the other hand's (KEEP x KEEP pairs).
+KEEP = 3
+
+
+class OutOfReachError(RuntimeError):
+    """Baxter cannot put a hand on the link (use virtual hands for long chains)."""
+
+
+@dataclass
+class Candidate:
+    """One candidate grasp of ``link`` by ``hand``.
+
+    Attributes:
+        index: Position in :meth:`GraspChoice.grasp_poses`.
+        pos, quat: The hand's target pose (world, [m] and wxyz).
+        q: The IK solution [rad] (the arm's 7 joints).
+        miss: Its pose error [m + 0.1 m/rad].
+        score: Reach, clearance (without the other arm), limit room, nearness.
+        sweep: Arm joint angles at the turned grasps (rotating hand only).
+        sweep_score: Missing joint-limit room over the sweep.
+    """
+
+    hand: str
+    link: str
+    index: int
+    pos: Vec
+    quat: Vec
+    q: Vec
+    miss: float
+    score: float
+    sweep: list[Vec] = field(default_factory=list)
+    sweep_score: float = 0.0
+
+    @property
+    def reachable(self) -> bool:
+        return self.miss <= REACH_TOLERANCE
+
+    @property
+    def total(self) -> float:
+        return self.score + self.sweep_score
+
+
+class GraspChoice:
+    """Mixin of :class:`artiplan.world.baxter.BaxterHands`: IK and the choice of grasps."""
+
+    model: mujoco.MjModel
+    data: mujoco.MjData
+    ik_data: mujoco.MjData
+    names: tuple[str, str]
+    geoms: dict[str, ArmGeoms]
+    avoid_collisions: bool
+    _q: dict[str, np.ndarray]
+    _v: dict[str, np.ndarray]
+    _hand: dict[str, int]
+    _lo: dict[str, Vec]
+    _hi: dict[str, Vec]
+    _depth: float
+    _clamped: str
+    #: (hold link, rotate link) of the last :meth:`assign` (sets where the grasp points are).
+    _roles: tuple[str, str] = ("", "")
+    #: hand -> (candidate, simulation time) chosen by :meth:`assign`.
+    _plan: dict[str, tuple[Candidate, float]]
+    _cand_cache: dict[tuple[object, ...], list[Candidate]]
+
+    def _other(self, hand: str) -> str:
+        return self.names[1] if hand == self.names[0] else self.names[0]
+
+    # -- candidates ------------------------------------------------------------------------
+    def grasp_fractions(self, link: str) -> tuple[float, ...]:
+        """Grasp points on ``link`` [fraction of its length from its base-end joint]."""
+        hold, rotate = self._roles
+        if link == hold:  # the shared joint is at its tip
+            return (CENTRE, CENTRE - OFF_CENTRE)
+        if link == rotate:  # ... at its base
+            return (CENTRE, CENTRE + OFF_CENTRE)
+        return (CENTRE, CENTRE - OFF_CENTRE, CENTRE + OFF_CENTRE)
+
+    def grasp_poses(self, hand: str, link: str, n_turns: int = 8) -> list[tuple[Vec, Vec]]:
+        """Candidate hand poses on ``link``: at each of :meth:`grasp_fractions`, the hand's z
+        axis (its approach) perpendicular to the link, turned about it in ``n_turns`` steps,
+        x along +-link."""
+        b = self.model.body(link).id
+        u = -self.data.xmat[b].reshape(3, 3)[:, 2]
+        length = 2.0 * float(self.model.geom(f"{link}_geom").size[1])
+        shoulder = self.data.xpos[self.model.body(f"baxter_{hand}_upper_shoulder").id]
+        poses = []
+        for f in self.grasp_fractions(link):
+            point = self.data.xpos[b] + f * length * u
+            z0 = point - shoulder
+            z0 -= np.dot(z0, u) * u
+            if np.linalg.norm(z0) < 1e-6:
+                z0 = np.cross(u, [1.0, 0.0, 0.0])
+            z0 /= np.linalg.norm(z0)
+            for i in range(n_turns):
+                a = 2.0 * np.pi * i / n_turns
+                z = np.cos(a) * z0 + np.sin(a) * np.cross(u, z0)
+                for x in (u, -u):
+                    mat = np.column_stack([x, np.cross(z, x), z])
+                    quat = np.empty(4)
+                    mujoco.mju_mat2Quat(quat, mat.ravel())
+                    poses.append((point - self._depth * z, quat))
+        return poses
+
+    def candidates(self, hand: str, link: str) -> list[Candidate]:
+        """Every candidate grasp of ``link`` by ``hand``, solved and scored, best first (the
+        other arm ignored: the pair is scored in :meth:`_pair_score`). Cached per state."""
+        key = (hand, link, self._roles, self.data.time, self.data.qpos.tobytes())
+        cached = self._cand_cache.get(key)
+        if cached is not None:
+            return cached
+        out = []
+        q_now = self.data.qpos[self._q[hand]].copy()
+        avoid = link if self.avoid_collisions else None
+        for index, (pos, quat) in enumerate(self.grasp_poses(hand, link)):
+            q = self.solve_ik(hand, pos, quat, iterations=150, avoid=avoid)
+            miss = self.ik_miss(hand, pos, quat)  # leaves ik_data's kinematics at q
+            score = miss + (UNREACHABLE if miss > REACH_TOLERANCE else 0.0)
+            if self.avoid_collisions:
+                clear = clearance(self.model, self.ik_data, self.geoms[hand], link, True, False)
+                score += CLEARANCE_WEIGHT * max(0.0, CLEARANCE_MARGIN - clear[0])
+            score += 0.05 * max(0.0, LIMIT_MARGIN - self.room(hand, q))
+            score += 0.002 * float(np.linalg.norm(q - q_now))  # stay near where the arm is
+            out.append(Candidate(hand, link, index, pos, quat, q, miss, score))
+        out.sort(key=lambda c: c.score)
+        self._cand_cache[key] = out
+        while len(self._cand_cache) > 8:  # only the current motion's grasps matter
+            self._cand_cache.pop(next(iter(self._cand_cache)))
+        return out
+
+    def _rotating_best(self, hand: str, link: str, keep: int) -> list[Candidate]:
+        """The ``keep`` best candidates by score + sweep score. The sweep (4 IK solves) only
+        adds, so candidates are swept in score order until none can enter the best ``keep``."""
+        done: list[Candidate] = []
+        for c in self.candidates(hand, link):
+            if len(done) >= keep and c.score >= sorted(d.total for d in done)[keep - 1]:
+                break
+            if c.reachable and not c.sweep:
+                self._sweep(c)
+            done.append(c)
+        return sorted(done, key=lambda c: c.total)[:keep]
+
+    def _sweep(self, c: Candidate) -> None:
+        """Turn the grasp +-SWEEP_DEG about the link's joint, about the vertical and the
+        horizontal normal (the two rotation planes): the arm's joint angles there, and the
+        missing joint-limit room (an unreachable turned pose counts as no room). A grasp
+        whose arm meets a limit mid-rotation drags the held link."""
+        b = self.model.body(c.link).id
+        pivot = self.data.xpos[b]
+        u = -self.data.xmat[b].reshape(3, 3)[:, 2]
+        normal = np.cross(u, [0.0, 0.0, 1.0])
+        axes = [np.array([0.0, 0.0, 1.0])]
+        if np.linalg.norm(normal) > 1e-3:
+            axes.append(normal / np.linalg.norm(normal))
+        room = np.inf
+        for axis in axes:
+            for sign in (1.0, -1.0):
+                turn = quat_axis_angle(axis, sign * np.radians(SWEEP_DEG))
+                t_pos = pivot + quat_to_mat(turn) @ (c.pos - pivot)
+                t_quat = quat_mul(turn, c.quat)
+                # Tracking-like: nearly no null-space drift (the servo's IK has almost none).
+                q_t = self.solve_ik(
+                    c.hand, t_pos, t_quat, iterations=40, start=c.q, nullspace=TRACK_NULLSPACE_GAIN
+                )
+                c.sweep.append(q_t)
+                if self.ik_miss(c.hand, t_pos, t_quat) > REACH_TOLERANCE:
+                    room = 0.0
+                room = min(room, self.room(c.hand, q_t))
+        c.sweep_score = SWEEP_WEIGHT * max(0.0, LIMIT_MARGIN - float(room))
+
+    # -- pairs ----------------------------------------------------------------------------
+    def _pair_score(self, hold: Candidate | None, rot: Candidate, q_hold: Vec) -> float:
+        """Score of rotating with ``rot`` while the other arm is at ``q_hold`` (its grasp
+        ``hold``, or where it is when it grasps nothing): both candidates' own scores plus
+        the arms' clearance to each other at the grasps and, over the sweep, the rotating
+        arm's clearance to the torso, scene and the holding arm."""
+        score = rot.total + (hold.total if hold is not None else 0.0)
+        if not self.avoid_collisions:
+            return score
+        d, m = self.ik_data, self.model
+        d.qpos[:] = self.data.qpos
+        d.qpos[self._q[self._other(rot.hand)]] = q_hold
+        geoms = self.geoms[rot.hand]
+        clear = np.inf
+        for i, q in enumerate([rot.q, *rot.sweep]):
+            d.qpos[self._q[rot.hand]] = q
+            mujoco.mj_kinematics(m, d)
+            # At the grasp the rest is in the candidates' scores; turned, everything but links
+            # (which turn with the hand and are not moved here).
+            with_body = i > 0
+            clear = min(clear, clearance(m, d, geoms, rot.link, False, True, with_body)[0])
+        return score + CLEARANCE_WEIGHT * max(0.0, CLEARANCE_MARGIN - float(clear))
+
+    def plan_pair(
+        self, hold_hand: str, hold_link: str | None, rot_hand: str, rot_link: str
+    ) -> tuple[float, Candidate | None, Candidate]:
+        """(score, holding candidate, rotating candidate) of the best pair; ``hold_link``
+        None: the holding arm grasps nothing (L1 is clamped) and stays where it is."""
+        keep = KEEP if self.avoid_collisions else 1
+        rots = self._rotating_best(rot_hand, rot_link, keep)
+        holds: list[Candidate | None] = [None]
+        if hold_link is not None:
+            holds = list(self.candidates(hold_hand, hold_link)[:keep])
+        best: tuple[float, Candidate | None, Candidate] | None = None
+        for h in holds:
+            q_hold = h.q if h is not None else self.data.qpos[self._q[hold_hand]].copy()
+            for r in rots:
+                s = self._pair_score(h, r, q_hold)
+                if best is None or s < best[0]:
+                    best = (s, h, r)
+        assert best is not None
+        return best
+
+    def best_grasp(self, hand: str, link: str) -> Candidate:
+        """The best candidate for ``hand`` alone, the other arm where it is now."""
+        other = self._other(hand)
+        q_other = self.data.qpos[self._q[other]].copy()
+        if link == self._roles[1]:
+            return self.plan_pair(other, None, hand, link)[2]
+        cands = self.candidates(hand, link)[: KEEP if self.avoid_collisions else 1]
+        return min(cands, key=lambda c: self._pair_score(None, c, q_other))
+
+    def assign(self, hold_link: str, rotate_link: str) -> tuple[str, str]:
+        """Which arm holds and which rotates: a pairing in which both grasps reach if there
+        is one, then the clearer, then the rest of the score. Remembers the chosen grasps (for
+        :meth:`approach` and :meth:`grasp`) and the roles (where the grasp points are)."""
+        self._roles = (hold_link, rotate_link)
+        clamped = hold_link == self._clamped  # L1: held by the fixture, not by a hand
+        best: tuple[float, str, Candidate | None, str, Candidate] | None = None
+        for hold_hand, rot_hand in (self.names, self.names[::-1]):
+            s, h, r = self.plan_pair(hold_hand, None if clamped else hold_link, rot_hand,
+                                     rotate_link)
+            if best is None or s < best[0]:
+                best = (s, hold_hand, h, rot_hand, r)
+        assert best is not None
+        _, hold_hand, h, rot_hand, r = best
+        self._plan = {rot_hand: (r, self.data.time)}
+        if h is not None:
+            self._plan[hold_hand] = (h, self.data.time)
+        return hold_hand, rot_hand
+
+    # -- inverse kinematics ---------------------------------------------------------------
+    def room(self, hand: str, q: Vec) -> float:
+        """Smallest distance [rad] of ``q`` to a joint limit of ``hand``'s arm."""
+        return float(np.minimum(q - self._lo[hand], self._hi[hand] - q).min())
+
+    def solve_ik(
+        self,
+        hand: str,
+        pos: Vec,
+        quat: Vec,
+        iterations: int = 50,
+        start: Vec | None = None,
+        damping: float = 1e-2,
+        nullspace: float = NULLSPACE_GAIN,
+        avoid: str | None = None,
+    ) -> Vec:
+        """Joint angles [rad] putting ``hand`` at (pos, quat): damped least squares. With
+        ``avoid`` (the link the hand will hold), the null space also pushes the arm away from
+        the torso, the scene and the other links (not the other arm: the pair's choice
+        handles that)."""
+        m, d = self.model, self.ik_data
+        d.qpos[:] = self.data.qpos
+        qa, va, body = self._q[hand], self._v[hand], self._hand[hand]
+        if start is not None:
+            d.qpos[qa] = start
+        jp, jr = np.zeros((3, m.nv)), np.zeros((3, m.nv))
+        err = np.zeros(6)
+        q_err = np.empty(4)
+        push = np.zeros(len(qa))
+        mid = 0.5 * (self._lo[hand] + self._hi[hand])
+        span = self._hi[hand] - self._lo[hand]
+        for it in range(iterations):
+            mujoco.mj_kinematics(m, d)
+            mujoco.mj_comPos(m, d)
+            err[:3] = pos - d.xpos[body]
+            mujoco.mju_mulQuat(q_err, quat, quat_conj(d.xquat[body]))
+            mujoco.mju_quat2Vel(err[3:], q_err, 1.0)
+            if np.linalg.norm(err[:3]) < 1e-5 and np.linalg.norm(err[3:]) < 1e-4:
+                break
+            mujoco.mj_jacBody(m, d, jp, jr, body)
+            jac = np.vstack([jp[:, va], jr[:, va]])
+            jjt = jac @ jac.T + damping**2 * np.eye(6)
+            dq = jac.T @ np.linalg.solve(jjt, err)
+            # Null space: drift toward mid-range, away from joint limits (the arm has 7 dof).
+            toward = nullspace * (mid - d.qpos[qa]) / span
+            if avoid is not None and it % AVOID_EVERY == 0:
+                push = AVOID_GAIN * repulsion(
+                    m, d, self.geoms[hand], va, avoid, AVOID_MARGIN, with_other=False
+                )
+            toward = toward + push
+            dq += toward - jac.T @ np.linalg.solve(jjt, jac @ toward)
+            step = np.linalg.norm(dq)
+            if step > 0.2:  # rad: keep steps small so the linearisation holds
+                dq *= 0.2 / step
+            d.qpos[qa] = np.clip(d.qpos[qa] + dq, self._lo[hand], self._hi[hand])
+        return d.qpos[qa].copy()
+
+    def ik_miss(self, hand: str, pos: Vec, quat: Vec) -> float:
+        """Pose error of the last IK solution: metres + 0.1 m per radian."""
+        mujoco.mj_kinematics(self.model, self.ik_data)
+        d_pos = float(np.linalg.norm(self.ik_data.xpos[self._hand[hand]] - pos))
+        q_err = quat_mul(quat, quat_conj(self.ik_data.xquat[self._hand[hand]]))
+        d_rot = 2.0 * float(np.arccos(min(1.0, abs(q_err[0]))))
+        return d_pos + 0.1 * d_rot
