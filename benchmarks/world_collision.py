@@ -3,7 +3,11 @@ arm, pedestal/table/fixture and the object, at the grasp and after a 30 deg rota
 link drift, rotation reached, and the wall time of choosing the grasps.
 
 Run: .venv/bin/python benchmarks/world_collision.py [--seeds N] [--links 4 6] [--no-avoid]
-Prints a markdown table (paste into benchmarks/results/world.md).
+     [--approach S]
+Prints a markdown table (paste into benchmarks/results/world.md). With ``--approach S`` it
+measures the approaches instead: per case two successive hold-and-rotates (the second starts
+with both hands on the object), the arms moving in S simulated seconds; it counts approaches
+whose path (a few intermediate configurations) comes into contact, and the reach times.
 """
 
 from __future__ import annotations
@@ -66,6 +70,47 @@ def case(n: int, seed: int, avoid: bool, verbose: bool) -> dict[str, float] | No
     }
 
 
+def approach_case(n: int, seed: int, avoid: bool, approach_s: float) -> dict[str, float] | None:
+    rng = random.Random(seed)
+    conf = random_configuration(n, rng)
+    world = make_world(
+        ArticulatedObject(n), conf, hands="baxter", preset="stiff", seed=seed,
+        avoid_collisions=avoid, approach_s=approach_s,
+    )
+    k = rng.randint(2, n - 2)
+    clear, links, reach = [], [], []
+    try:
+        for hold in (k, k + 1):
+            t0 = world.time
+            world.hold_and_rotate(f"L{hold}", f"L{hold + 1}", "z-axis", rng.choice([1, -1]), 10.0)
+            reach.append(world.time - t0)
+            clear.append(min(c[0] for c in world.hands.last_approach_clearance.values()))
+            links.append(min(c[1] for c in world.hands.last_approach_clearance.values()))
+            world.run_until(world.time + 1.0)
+            world.stop(release=True)
+    except RuntimeError:
+        return None
+    return {"first": clear[0], "second": clear[1], "links": min(links), "reach": max(reach)}
+
+
+def approach_table(args: argparse.Namespace) -> None:
+    print("| links | cases | unreachable | approaches through contact (1st / 2nd) |"
+          " path clearance min [m] | cases with an approach through a link | reach time max [s] |")
+    print("|---|---|---|---|---|---|---|")
+    for n in args.links:
+        res = [approach_case(n, s, not args.no_avoid, args.approach) for s in range(args.seeds)]
+        ok = [r for r in res if r is not None]
+        first = np.array([r["first"] for r in ok])
+        second = np.array([r["second"] for r in ok])
+        print(
+            f"| {n} | {len(res)} | {len(res) - len(ok)} |"
+            f" {int((first < 0).sum())} / {int((second < 0).sum())} |"
+            f" {min(first.min(), second.min()):.3f} |"
+            f" {sum(r['links'] < 0 for r in ok)} | {max(r['reach'] for r in ok):.2f} |",
+            flush=True,
+        )
+
+
 def main() -> None:
     parser = argparse.ArgumentParser()
     parser.add_argument("--seeds", type=int, default=12)
@@ -73,8 +118,12 @@ def main() -> None:
     parser.add_argument(
         "--no-avoid", action="store_true", help="baseline: grasp choice and IK blind to obstacles"
     )
+    parser.add_argument("--approach", type=float, default=0.0, help="measure approaches")
     parser.add_argument("-v", "--verbose", action="store_true")
     args = parser.parse_args()
+    if args.approach > 0:
+        approach_table(args)
+        return
     print(
         "| links | cases | unreachable | colliding at grasp | colliding after rotation |"
         " colliding (either) | robot/scene min / median [m] | colliding incl. object |"

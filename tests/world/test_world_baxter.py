@@ -2,6 +2,10 @@
 
 from __future__ import annotations
 
+from dataclasses import replace
+
+import mujoco
+import numpy as np
 import pytest
 
 from artiplan.model import ArticulatedObject, Configuration, direction_error
@@ -53,3 +57,103 @@ def test_baxter_approaches_in_simulated_time_then_rotates() -> None:
     expected = start.with_angle(3, "z-axis", start.gamma[2] + 30.0)
     assert direction_error(expected, end)[2] < 2.0
     assert direction_error(start, end)[1] < 0.5
+
+
+def _fractions(world, hand: str, link: str) -> set[float]:
+    """Where along ``link`` [fraction of its length from its base joint] the grasp points are."""
+    hands = world.hands
+    b = world.model.body(link).id
+    base, u = world.data.xpos[b], -world.data.xmat[b].reshape(3, 3)[:, 2]
+    out = set()
+    for pos, quat in hands.grasp_poses(hand, link):
+        mat = np.empty(9)
+        mujoco.mju_quat2Mat(mat, quat)
+        point = pos + hands._depth * mat.reshape(3, 3)[:, 2]  # between the finger pads
+        out.add(round(float(np.dot(point - base, u)) / world.obj.link_length, 3))
+    return out
+
+
+def test_baxter_grasp_candidates_include_points_away_from_the_shared_joint() -> None:
+    obj = ArticulatedObject(4)
+    conf = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
+    world = make_world(obj, conf, hands="baxter")
+    world.hands.assign("L2", "L3")  # L2 and L3 share J3: L2's tip, L3's base
+    assert _fractions(world, "left", "L2") == {0.5, 0.25}
+    assert _fractions(world, "right", "L3") == {0.5, 0.75}
+
+
+def test_baxter_assign_picks_the_pairing_in_which_both_hands_reach(monkeypatch) -> None:
+    """The right hand is made unable to reach L3 (every candidate 2 cm short): the pairing
+    left-holds/right-rotates is then refused although its scores are otherwise as good."""
+    from artiplan.world.grasping import REACH_TOLERANCE, UNREACHABLE
+
+    obj = ArticulatedObject(4)
+    conf = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
+    world = make_world(obj, conf, hands="baxter")
+    hands = world.hands
+    real = hands.candidates
+
+    def right_misses_l3(hand: str, link: str) -> list:
+        out = real(hand, link)
+        if (hand, link) != ("right", "L3"):
+            return out
+        return [replace(c, miss=0.02, score=c.score + UNREACHABLE, sweep=[]) for c in out]
+
+    monkeypatch.setattr(hands, "candidates", right_misses_l3)
+    assert any(c.reachable for c in hands.candidates("left", "L3"))  # the other pairing reaches
+    assert any(c.reachable for c in hands.candidates("right", "L2"))
+    assert hands.assign("L2", "L3") == ("right", "left")
+    world.hold_and_rotate("L2", "L3", "z-axis", 1, 10.0)  # grasps without OutOfReachError
+    assert hands.held("right") == "L2" and hands.held("left") == "L3"
+    assert max(hands.last_jump_m.values()) < 2.0  # sanity: finite jumps
+    assert REACH_TOLERANCE < 0.02
+
+
+def test_baxter_grasp_raises_only_when_no_candidate_reaches(monkeypatch) -> None:
+    from artiplan.world.baxter import OutOfReachError
+
+    obj = ArticulatedObject(4)
+    world = make_world(obj, hands="baxter")
+    hands = world.hands
+    real = hands.candidates
+    monkeypatch.setattr(
+        hands,
+        "candidates",
+        lambda h, link: [replace(c, miss=0.03, score=c.score + 10.0) for c in real(h, link)],
+    )
+    with pytest.raises(OutOfReachError, match="cannot reach L3"):
+        hands.grasp("right", "L3")
+    monkeypatch.undo()
+    hands.grasp("right", "L3")  # the real candidates reach
+    assert hands.held("right") == "L3"
+
+
+@pytest.mark.slow
+def test_baxter_approach_backs_off_from_the_object_first() -> None:
+    obj = ArticulatedObject(4)
+    conf = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
+    world = make_world(obj, conf, hands="baxter", approach_s=1.0)
+    hands = world.hands
+    world.hold_and_rotate("L2", "L3", "z-axis", 1, 10.0)
+    world.run_until(world.time + 0.5)
+    world.stop(release=True)
+    axes = {h: world.data.xmat[hands._hand[h]].reshape(3, 3)[:, 2].copy() for h in hands.names}
+    starts = {h: world.data.xpos[hands._hand[h]].copy() for h in hands.names}
+    backed: dict[str, float] = {h: 0.0 for h in hands.names}
+    t0 = world.time
+
+    def advance(dt: float) -> None:
+        world.step(dt)
+        if world.time - t0 <= 0.24 + 1e-6:  # the retreat phase
+            for h in hands.names:
+                moved = world.data.xpos[hands._hand[h]] - starts[h]
+                backed[h] = max(backed[h], -float(np.dot(moved, axes[h])))
+
+    hold, rot = hands.assign("L3", "L4")
+    hands.approach([(hold, "L3"), (rot, "L4")], advance)
+    # Both hands were on the object: each first moved back along its approach axis.
+    assert min(backed.values()) > 0.03, backed
+    assert world.time - t0 == pytest.approx(0.24 + 1.0 + 0.2, abs=0.005)
+    world.hands.grasp(hold, "L3")
+    world.hands.grasp(rot, "L4")
+    assert max(hands.last_jump_m.values()) < 0.03

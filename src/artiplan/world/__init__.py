@@ -36,7 +36,7 @@ def make_world(
     seed: int = 0,
     perception: PerceptionConfig | None = None,
     approach_s: float = 0.0,
-    avoid_collisions: bool = False,
+    avoid_collisions: bool = True,
 ) -> World:
     """A world with named settings: ``preset`` stiff|loose, ``hands`` virtual|baxter
     (``approach_s`` > 0: Baxter's arms move to each grasp in that many simulated seconds;

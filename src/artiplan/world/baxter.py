@@ -5,15 +5,22 @@ never copied into the repository) and attached to the scene with ``MjSpec``. Eac
 by its torque motors (robosuite's limits: 50/100/50/50/15/15/15 N m): joint-space PD toward an
 inverse-kinematics solution (damped least squares on ``mj_jacBody``) plus the bias forces
 (gravity, Coriolis). A grasp welds the hand body to the link at their current relative pose.
+Which arm holds and which rotates, and where each grasps, is chosen in
+:mod:`artiplan.world.grasping`: reach first (a pairing where both hands reach whenever one
+exists), then clearance, then joint-limit room over a +-30 deg turn.
 
 Limits of this implementation (honest): the fingers close for show, the weld holds the link;
 by default an arm *jumps* to its grasp (its IK solution is written into the state); with
-``approach_s`` > 0 it moves there in simulated time, and the last few millimetres still jump;
-:meth:`BaxterHands.retreat` backs the opened hands away in simulated time (called by whoever
-sequences motions: the world itself does not). Arm contacts are off in the physics; collisions
-are avoided by choosing, among the candidate grasps, IK solutions clear of the torso, the other
-arm, the table, fixture and other links (:mod:`artiplan.world.collision`), not during the
-rotation (the tracking IK is blind to obstacles).
+``approach_s`` > 0 it moves there in simulated time (after backing every opened hand that is
+near the object 6 cm off it), and the last few millimetres still jump. Arm contacts are off in
+the physics: nothing stops an arm that does pass through an obstacle. With
+``avoid_collisions`` the grasps are *chosen* clear of the torso, the other arm, the pedestal,
+table, fixture and other links (:mod:`artiplan.world.collision`), at the grasp and at the
+rotating arm's poses turned +-30 deg on both planes (the holding arm at its grasp); the grasp
+IK is pushed away from obstacles. Not avoided: contacts during the rotation that the sweep's
+four sample poses miss (the tracking IK itself is blind to obstacles), arm-vs-link contacts
+during the rotation (links are not turned in the check), and collisions on the way of an
+approach or a retreat (only measured: ``last_approach_clearance``).
 """
 
 from __future__ import annotations
@@ -31,7 +38,7 @@ from artiplan.world.baxter_model import (  # noqa: F401 - re-exported (public na
     baxter_layout,
     baxter_xml_path,
 )
-from artiplan.world.collision import ArmGeoms, arm_geoms
+from artiplan.world.collision import ArmGeoms, arm_geoms, clearance
 from artiplan.world.grasping import (  # noqa: F401 - re-exported (public names)
     REACH_TOLERANCE,
     SWEEP_DEG,
@@ -59,7 +66,7 @@ RETREAT_S = 0.5
 #: [m] to a link APPROACH_RETREAT_M [m] along its approach axis, in APPROACH_RETREAT_S [s].
 RETREAT_NEAR = 0.06
 APPROACH_RETREAT_M = 0.06
-APPROACH_RETREAT_S = 0.25
+APPROACH_RETREAT_S = 0.24
 #: Joint configurations checked for clearance along an approach (evenly spaced, ends excluded).
 PATH_CHECKS = 4
 
@@ -70,13 +77,14 @@ class BaxterHands(GraspChoice, Hands):
     #: The arm adds its own lag: gentler outer-loop gains than the virtual hands' (measured:
     #: kp 1, ki 10 tracked 11 of 12 random 4-link rotations; kp 2, ki 40 oscillates).
     servo_gains = ServoGains(kp=1.0, ki=10.0)
+    last_approach_clearance: dict[str, tuple[float, float]]
 
     def __init__(
         self,
         kp_scale: float = 30.0,
         damping_ratio: float = 1.0,
         approach_s: float = 0.0,
-        avoid_collisions: bool = False,
+        avoid_collisions: bool = True,
     ) -> None:
         """``kp_scale``: joint stiffness [N m/rad] per N m of motor limit; ``approach_s``: when
         > 0, the arms move to their grasps in this many simulated seconds (gravity acting)
@@ -109,8 +117,9 @@ class BaxterHands(GraspChoice, Hands):
             away = {h: self._backed_off(h, APPROACH_RETREAT_M) for h in near}
             self._move({h: starts[h] for h in near}, away, APPROACH_RETREAT_S, advance, 0.0)
             starts.update(away)
-        for h in goals:
-            self.last_approach_clearance[h] = self._path_clearance(h, starts, goals)
+        self.last_approach_clearance = {
+            h: self._path_clearance(h, dict(pairs)[h], starts, goals) for h in goals
+        }
         self._move({h: starts[h] for h in goals}, goals, self.approach_s, advance)
 
     def _chosen(self, hand: str, link: str) -> Candidate:
@@ -142,13 +151,15 @@ class BaxterHands(GraspChoice, Hands):
         quat = self.data.xquat[self._hand[hand]].copy()
         return self.solve_ik(hand, pos, quat, iterations=100, start=start)
 
-    def _path_clearance(self, hand: str, starts: dict[str, Vec], goals: dict[str, Vec]) -> float:
-        """Smallest clearance [m] of ``hand``'s arm to the torso, the other arm and the scene
-        at :data:`PATH_CHECKS` configurations along the joint-space path (both arms moving)."""
-        from artiplan.world.collision import clearance
-
+    def _path_clearance(
+        self, hand: str, link: str, starts: dict[str, Vec], goals: dict[str, Vec]
+    ) -> tuple[float, float]:
+        """Smallest clearance [m] of ``hand``'s arm on its way to ``link`` at
+        :data:`PATH_CHECKS` configurations along the joint-space path (both arms moving): to
+        the torso, the other arm and the scene; and to those or the object's links (the
+        gripper may touch ``link``; the links as they are now)."""
         d = self.ik_data
-        best = np.inf
+        robot, links = np.inf, np.inf
         for i in range(1, PATH_CHECKS + 1):
             x = i / (PATH_CHECKS + 1)
             s = x * x * (3.0 - 2.0 * x)
@@ -156,8 +167,9 @@ class BaxterHands(GraspChoice, Hands):
             for h, q in starts.items():
                 d.qpos[self._q[h]] = q + s * (goals[h] - q) if h in goals else q
             mujoco.mj_kinematics(self.model, d)
-            best = min(best, clearance(self.model, d, self.geoms[hand], None, False)[0])
-        return float(best)
+            robot = min(robot, clearance(self.model, d, self.geoms[hand], link, False)[0])
+            links = min(links, clearance(self.model, d, self.geoms[hand], link, True)[0])
+        return float(robot), float(links)
 
     def retreat(
         self,
@@ -285,9 +297,9 @@ class BaxterHands(GraspChoice, Hands):
         self._target_qd = {h: np.zeros(len(ARM_JOINTS)) for h in self.names}
         #: How far [m] each hand jumped at its last grasp (0 after a perfect approach).
         self.last_jump_m = {h: 0.0 for h in self.names}
-        #: Smallest arm clearance [m] (torso, other arm, scene) met at the intermediate
-        #: configurations of the last approach (DIST_MAX when nothing is near), per hand.
-        self.last_approach_clearance: dict[str, float] = {}
+        #: Per hand, smallest arm clearance [m] at the intermediate configurations of the
+        #: last approach: (torso, other arm, scene; the same or other links).
+        self.last_approach_clearance = {}
 
     # -- grasping ------------------------------------------------------------------------
     def grasp(self, hand: str, link: str) -> None:

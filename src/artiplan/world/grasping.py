@@ -24,8 +24,14 @@ from artiplan.world.rotations import Vec, quat_axis_angle, quat_conj, quat_mul, 
 
 #: A grasp whose IK solution misses the grasp point by more than this [m] is refused.
 REACH_TOLERANCE = 0.01
-#: Score of an unreachable candidate (above any sum of the other terms: reach comes first).
+#: Score of an unreachable candidate (above any sum of the other terms: reach comes first),
+#: plus MISS_WEIGHT per metre of miss (among unreachable ones the nearest miss wins: the link
+#: may come into reach while the arms approach).
 UNREACHABLE = 10.0
+MISS_WEIGHT = 20.0
+#: A candidate missing by less than this [m] is solved again from mid-range joint angles (the
+#: damped least squares can stall near the workspace's edge from the arm's current angles).
+RETRY_MISS = 0.05
 #: Grasp points along the link [fraction of its length from the base-end joint]: the centre
 #: first, then a quarter length away from the joint shared with the other grasped link.
 CENTRE, OFF_CENTRE = 0.5, 0.25
@@ -164,11 +170,20 @@ class GraspChoice:
             return cached
         out = []
         q_now = self.data.qpos[self._q[hand]].copy()
+        mid = 0.5 * (self._lo[hand] + self._hi[hand])
         avoid = link if self.avoid_collisions else None
         for index, (pos, quat) in enumerate(self.grasp_poses(hand, link)):
             q = self.solve_ik(hand, pos, quat, iterations=150, avoid=avoid)
             miss = self.ik_miss(hand, pos, quat)  # leaves ik_data's kinematics at q
-            score = miss + (UNREACHABLE if miss > REACH_TOLERANCE else 0.0)
+            if REACH_TOLERANCE < miss < RETRY_MISS:
+                q2 = self.solve_ik(hand, pos, quat, iterations=200, start=mid, avoid=avoid)
+                miss2 = self.ik_miss(hand, pos, quat)
+                if miss2 < miss:
+                    q, miss = q2, miss2
+                else:  # put ik_data's kinematics back at q
+                    self.ik_data.qpos[self._q[hand]] = q
+                    mujoco.mj_kinematics(self.model, self.ik_data)
+            score = miss + (UNREACHABLE + MISS_WEIGHT * miss if miss > REACH_TOLERANCE else 0.0)
             if self.avoid_collisions:
                 clear = clearance(self.model, self.ik_data, self.geoms[hand], link, True, False)
                 score += CLEARANCE_WEIGHT * max(0.0, CLEARANCE_MARGIN - clear[0])
