@@ -1,7 +1,7 @@
 """Closed-loop success rate over seeded tasks (issue 7's bar), written as JSON Lines + summary.
 
 Usage: .venv/bin/python benchmarks/execution_loop.py [--tasks 20] [--links 4] [--model ucm]
-       [--preset stiff] [--hands virtual] [--intervene] [--plan-tol 2.5]
+       [--preset stiff] [--hands virtual] [--intervene] [--plan-tol 1.5]
        [--approach 1.0] [--start 1] -o FILE.jsonl
 ``--approach S`` (Baxter): the arms move to each grasp in S simulated seconds; the reach time is
 then measured on the simulated Baxter (``measure_reach``) and used as the encodings'
@@ -27,7 +27,8 @@ def main() -> None:
     ap.add_argument("--preset", default="stiff")
     ap.add_argument("--hands", default="virtual")
     ap.add_argument("--intervene", action="store_true")
-    ap.add_argument("--plan-tol", type=float, default=2.5)
+    ap.add_argument("--plan-tol", type=float, default=None,
+                    help="planning goal half-width [deg] (default: LoopConfig's)")
     ap.add_argument("--seed", type=int, default=7, help="suite seed of the tasks")
     ap.add_argument("--advance-latency", action="store_true")
     ap.add_argument("--reach-time", type=float, default=None)
@@ -57,9 +58,11 @@ def main() -> None:
     enc = EncodingOptions(args.model, speed_g=round(cal.speed_g, 3),
                           acceleration=round(cal.acceleration, 3), reach_time=reach)
     ivs = (Intervention(0.0, "L3", "z-axis", 20.0, fraction=0.4),) if args.intervene else ()
-    config = LoopConfig(encoding=enc, interventions=ivs, plan_tolerance_deg=args.plan_tol,
+    config = LoopConfig(encoding=enc, interventions=ivs,
                         advance_latency=args.advance_latency,
                         compensate_approach=not args.no_compensate)
+    if args.plan_tol is not None:
+        config = replace(config, plan_tolerance_deg=args.plan_tol)
     if args.fallback_after is not None:
         config = replace(config, fallback_after=args.fallback_after)
     rows = []

@@ -75,7 +75,7 @@ class LoopConfig:
 
     encoding: EncodingOptions = field(default_factory=lambda: EncodingOptions("ucm", speed_g=0.5))
     goal_style: str = "window"
-    plan_tolerance_deg: float = 2.5
+    plan_tolerance_deg: float = 1.5
     accept_deg: float = 5.0
     threshold_deg: float = 8.0
     other_threshold_deg: float | None = 45.0

@@ -73,6 +73,8 @@ class ClosedLoop:
         self.lead = (enc.reach_time or 0.0) if approaching and config.compensate_approach else 0.0
         self.pending = sorted(config.interventions, key=lambda i: i.time)
         self.replans = 0
+        #: (hold, rotate) pairs whose grasp just failed: the next plan does without them.
+        self.blocked: frozenset[tuple[str, str]] = frozenset()
         #: Links carried by the vertical-plane rotation in progress (see Monitor.check).
         self.carried: frozenset[str] = frozenset()
         self.log = RunLog(
@@ -138,10 +140,8 @@ class ClosedLoop:
     def _plan(self, reason: str) -> Prediction | None:
         """Perceive, build the problem, plan; log it. None when no plan was found."""
         start = canonical(self._perceive_for_planning())
-        problem = build_problem(self.obj, start, self.target, self.encoding, self.goal,
-                                hands_away=self.lead > 0.0)
         t = time.perf_counter()
-        result = plan(self.domain, problem, time_limit=self.config.plan_time_limit)
+        result = self._solve(start)
         latency = time.perf_counter() - t
         index = len(self.log.plans)
         if index:
@@ -175,6 +175,21 @@ class ClosedLoop:
                 (replace(iv, time=t0 + iv.fraction * span) if iv.fraction is not None else iv
                  for iv in self.pending), key=lambda i: i.time)
         return Prediction(self.obj, result.trajectory, t0, start)
+
+    def _solve(self, start: Configuration) -> Any:
+        """Plan from ``start``; without the blocked grasps first (a grasp that just failed
+        would fail again from nearly the same state), with them if that finds no plan."""
+        blocked, self.blocked = self.blocked, frozenset()
+        for without in ((blocked, frozenset()) if blocked else (frozenset(),)):
+            problem = build_problem(self.obj, start, self.target, self.encoding, self.goal,
+                                    hands_away=self.lead > 0.0, blocked=without)
+            result = plan(self.domain, problem, time_limit=self.config.plan_time_limit)
+            if result.status is PlanStatus.SOLVED:
+                if without:
+                    self.progress("planned without grasping " + ", ".join(
+                        f"{h}+{r}" for h, r in sorted(without)) + " (that grasp just failed)")
+                break
+        return result
 
     # -- execution ------------------------------------------------------------------------
     def _execute(self, pred: Prediction) -> str | None:
@@ -246,6 +261,11 @@ class ClosedLoop:
                                pred.at(max(now, planned))), True
         except ActionFailed as exc:
             did, ok = str(exc), False
+            names = {lk.lower(): lk for lk in self.obj.links}
+            if action.name.lower().startswith("start-") and len(action.args) == 3 \
+                    and {a.lower() for a in action.args[:2]} <= names.keys():
+                pair = (names[action.args[0].lower()], names[action.args[1].lower()])
+                self.blocked = self.blocked | {pair}
         if ok and self.world.time > now:  # the arms approached: the rotation starts now
             shift = self.world.time - planned
             did += f" (reach {self.world.time - now:.2f} s, {shift:+.2f} s off the plan)"
