@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import random
+
 import mujoco
 import pytest
 
-from artiplan.model import ArticulatedObject, Configuration
+from artiplan.model import ArticulatedObject, Configuration, random_configuration
 from artiplan.world import make_world
 from artiplan.world.collision import arm_contacts, arm_geoms, clearance
 
@@ -57,3 +59,24 @@ def test_baxter_retreats_after_release_in_simulated_time() -> None:
         assert hands.held(h) is None
         moved = float(((world.data.xpos[hands._hand[h]] - grasp_points[h]) ** 2).sum() ** 0.5)
         assert 0.07 < moved < 0.13, (h, moved)
+
+
+@pytest.mark.slow
+def test_baxter_arms_stay_clear_over_a_rotation_that_collided_before() -> None:
+    """4 links, seed 6 of benchmarks/world_collision.py: hold L2, rotate L3 by +30 deg on
+    xy-axes. With the grasps chosen by clearance at the grasp only (commit e27f562), an arm
+    ended 6 cm inside the torso's hull after the turn; scoring the turned poses too (the
+    holding arm at its grasp) keeps both arms clear."""
+    rng = random.Random(6)
+    conf = random_configuration(4, rng)
+    obj = ArticulatedObject(4)
+    world = make_world(obj, conf, hands="baxter", preset="stiff", seed=6)
+    k = rng.randint(1, 3)
+    plane = rng.choice(["z-axis", "xy-axes"])
+    sign = rng.choice([1, -1])
+    world.hold_and_rotate(f"L{k}", f"L{k + 1}", plane, sign, 10.0)
+    world.run_until(world.time + 3.0)
+    for hand in ("left", "right"):
+        geoms = arm_geoms(world.model, hand, list(obj.links))
+        dist, pair = clearance(world.model, world.data, geoms, world.hands.held(hand), False)
+        assert dist >= 0.0, f"{hand}: {pair} {dist:.3f} m"

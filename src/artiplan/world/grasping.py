@@ -45,7 +45,8 @@ LIMIT_MARGIN = 0.3
 #: The rotating hand's grasps are checked this far [deg] into a turn either way (the
 #: planner's rotations are tens of degrees).
 SWEEP_DEG = 30.0
-#: Score per radian of missing room in that sweep (0.3 rad short ~ a 3 cm miss).
+#: Score per radian of missing room in that sweep, summed over its turned poses (0.3 rad
+#: short ~ a 3 cm miss).
 SWEEP_WEIGHT = 0.1
 #: Grasps whose arm comes closer than this [m] to the torso, the other arm, the pedestal,
 #: table, fixture or another link score worse, by CLEARANCE_WEIGHT per metre inside it (a
@@ -211,8 +212,8 @@ class GraspChoice:
     def _sweep(self, c: Candidate) -> None:
         """Turn the grasp +-SWEEP_DEG about the link's joint, about the vertical and the
         horizontal normal (the two rotation planes): the arm's joint angles there, and the
-        missing joint-limit room (an unreachable turned pose counts as no room). A grasp
-        whose arm meets a limit mid-rotation drags the held link."""
+        joint-limit room missing there, summed (an unreachable turned pose counts as no
+        room). A grasp whose arm meets a limit mid-rotation drags the held link."""
         b = self.model.body(c.link).id
         pivot = self.data.xpos[b]
         u = -self.data.xmat[b].reshape(3, 3)[:, 2]
@@ -220,7 +221,7 @@ class GraspChoice:
         axes = [np.array([0.0, 0.0, 1.0])]
         if np.linalg.norm(normal) > 1e-3:
             axes.append(normal / np.linalg.norm(normal))
-        room = np.inf
+        missing = 0.0
         for axis in axes:
             for sign in (1.0, -1.0):
                 turn = quat_axis_angle(axis, sign * np.radians(SWEEP_DEG))
@@ -231,10 +232,12 @@ class GraspChoice:
                     c.hand, t_pos, t_quat, iterations=40, start=c.q, nullspace=TRACK_NULLSPACE_GAIN
                 )
                 c.sweep.append(q_t)
-                if self.ik_miss(c.hand, t_pos, t_quat) > REACH_TOLERANCE:
-                    room = 0.0
-                room = min(room, self.room(c.hand, q_t))
-        c.sweep_score = SWEEP_WEIGHT * max(0.0, LIMIT_MARGIN - float(room))
+                reached = self.ik_miss(c.hand, t_pos, t_quat) <= REACH_TOLERANCE
+                room = self.room(c.hand, q_t) if reached else 0.0
+                # Summed over the turned poses: only one of them will be the rotation, so a
+                # grasp with room in more of them is the safer bet.
+                missing += max(0.0, LIMIT_MARGIN - room)
+        c.sweep_score = SWEEP_WEIGHT * missing
 
     # -- pairs ----------------------------------------------------------------------------
     def _pair_score(self, hold: Candidate | None, rot: Candidate, q_hold: Vec) -> float:
