@@ -1,9 +1,11 @@
 """Clearance of Baxter's arms: signed distances between each arm's collision geoms and the
 obstacles (torso and head, the other arm, the pedestal, table, fixture and the object's links).
 
-Used to choose grasps: the IK itself knows nothing of obstacles, so each candidate solution is
-checked here (``mj_geomDistance`` on robosuite's primitive collision shapes) and penalised when
-closer than a margin. The grasping gripper is allowed to touch the link it holds.
+Used to choose grasps (:mod:`artiplan.world.grasping`): each candidate IK solution, the pair of
+arms at their grasps and the rotating arm at its turned poses are checked here
+(``mj_geomDistance`` on robosuite's primitive collision shapes) and penalised when closer than a
+margin; :func:`repulsion` pushes the grasp IK away from obstacles. The grasping gripper is
+allowed to touch the link it holds.
 """
 
 from __future__ import annotations
