@@ -62,6 +62,7 @@ def test_baxter_retreats_after_release_in_simulated_time() -> None:
 
 
 @pytest.mark.slow
+@pytest.mark.ci
 def test_baxter_arms_stay_clear_over_a_rotation_that_collided_before() -> None:
     """4 links, seed 6 of benchmarks/world_collision.py: hold L2, rotate L3 by +30 deg on
     xy-axes. With the grasps chosen by clearance at the grasp only (commit e27f562), an arm
