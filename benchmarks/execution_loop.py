@@ -38,6 +38,8 @@ def main() -> None:
                     help="dispatch starts at their planned times (the approach delays them)")
     ap.add_argument("--fallback-after", type=int, default=None,
                     help="switch to NG from this many re-plans on (default: LoopConfig's)")
+    ap.add_argument("--carry", choices=("rigid", "projected"), default="rigid",
+                    help="the encodings' carry rule (EncodingOptions.carry)")
     ap.add_argument("--start", type=int, default=1, help="first task index")
     ap.add_argument("-o", "--out", type=Path, required=True)
     args = ap.parse_args()
@@ -56,7 +58,8 @@ def main() -> None:
         reach = measure_reach(make_world, obj, preset=args.preset, approach_s=args.approach)
         print(f"measured reach time on the simulated Baxter: {reach} s", flush=True)
     enc = EncodingOptions(args.model, speed_g=round(cal.speed_g, 3),
-                          acceleration=round(cal.acceleration, 3), reach_time=reach)
+                          acceleration=round(cal.acceleration, 3), reach_time=reach,
+                          carry=args.carry)
     ivs = (Intervention(0.0, "L3", "z-axis", 20.0, fraction=0.4),) if args.intervene else ()
     config = LoopConfig(encoding=enc, interventions=ivs,
                         advance_latency=args.advance_latency,
@@ -81,7 +84,7 @@ def main() -> None:
                    "max_goal_error": log.final.get("max_goal_error"),
                    "hands": world.hands.kind, "model": args.model, "preset": args.preset,
                    "approach_s": args.approach, "reach_time": reach,
-                   "compensate": not args.no_compensate}
+                   "compensate": not args.no_compensate, "carry": args.carry}
             rows.append(row)
             fh.write(json.dumps(row) + "\n")
             print(json.dumps(row), flush=True)

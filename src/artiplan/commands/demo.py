@@ -52,6 +52,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              f"{APPROACH_S:g}; the reach time is measured with it)")
     parser.add_argument("--no-approach", action="store_true",
                         help="Baxter's arms jump to their grasps (no reach time)")
+    parser.add_argument("--carry", choices=("rigid", "projected"), default="rigid",
+                        help="how vertical turns move carried links in the plans: rigid (the "
+                             "paper, default) or projected (see docs/encodings.md)")
     parser.add_argument("--no-animation", action="store_true",
                         help="skip camera frames (no OpenGL needed)")
 
@@ -140,7 +143,8 @@ def _loop_config(obj: Any, world: Any, args: argparse.Namespace) -> tuple[Any, s
         reach = measure_reach(make_world, obj, preset=args.preset, approach_s=approach)
         how = f"measured on the simulated Baxter, {approach:g} s approach"
     enc = EncodingOptions(args.model, speed_g=round(calib.speed_g, 3),
-                          acceleration=round(calib.acceleration, 3), reach_time=reach)
+                          acceleration=round(calib.acceleration, 3), reach_time=reach,
+                          carry=args.carry)
     link, plane, delta, fraction = INTERVENTION
     interventions = ((Intervention(0.0, link, plane, delta, fraction=fraction),)
                      if args.intervene else ())

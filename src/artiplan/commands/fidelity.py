@@ -30,6 +30,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--plan-time-limit", type=float, default=10.0,
                         help="wall limit of one planner call [s] (default 10)")
     parser.add_argument("--no-closed", action="store_true", help="skip the re-planning runs")
+    parser.add_argument("--carry", choices=("rigid", "projected"), default="rigid",
+                        help="how vertical turns move carried links: rigid (the paper, default) "
+                             "or projected (cos/cot factors from the state; see docs/encodings.md)")
     parser.add_argument("-o", "--out", type=Path, required=True, help="output folder")
 
 
@@ -52,7 +55,7 @@ def run(args: argparse.Namespace) -> int:
 
     config = FidelityConfig(tasks=args.tasks, sizes=sizes, preset=args.preset, hands=args.hands,
                             seed=args.seed, models=models, closed_loop=not args.no_closed,
-                            plan_time_limit=args.plan_time_limit)
+                            plan_time_limit=args.plan_time_limit, carry=args.carry)
     out: Path = args.out
     out.mkdir(parents=True, exist_ok=True)
     rows = run_fidelity(config, make_world, progress=lambda s: print(s, flush=True))

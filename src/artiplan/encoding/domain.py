@@ -27,7 +27,7 @@ from __future__ import annotations
 
 from artiplan.encoding.goals import fmt_number
 from artiplan.encoding.options import EncodingOptions
-from artiplan.model import ArticulatedObject
+from artiplan.model import HORIZONTAL_PLANE, ArticulatedObject
 
 #: Margin [deg] of the wrap-around below 0 and of UACM's start/stop hysteresis. It must exceed
 #: twice VAL's comparison slack (1e-4) by far, and be negligible next to a goal tolerance.
@@ -63,6 +63,10 @@ def _header(options: EncodingOptions) -> str:
     if options.reach_time is not None:
         functions += ["(reach-time)", "(reach-clock)"]
         predicates.append("(reaching)")
+    if options.carry == "projected":
+        functions.append("(carry ?l1 - link ?l2 - link ?p - plane)")
+        if _azimuth_plane(options):
+            functions.append("(carry-theta ?l1 - link ?l2 - link)")
     pred_text = "\n    ".join(predicates)
     func_text = "\n    ".join(functions)
     return f"""(define (domain {domain_name(options)})
@@ -86,6 +90,9 @@ def _robot(options: EncodingOptions, sign: str) -> str:
     timed = options.reach_time is not None
     ready = "\n      (not (reaching))" if timed else ""
     reach = "\n      (reaching)\n      (assign (reach-clock) 0)" if timed else ""
+    carried = _carried(options, speed, "?p")
+    turning = f"({flag} ?l1 {options.gravity_plane})\n      (affects ?l1 ?l2)"
+    azimuth = _azimuth(options, f"propagate-{sign}-azimuth", turning, sign, speed)
     return f"""
   ;; The robot holds ?l1 with one hand and rotates its tip-ward neighbour ?l2 on ?p.
   (:action start-{sign}
@@ -121,8 +128,40 @@ def _robot(options: EncodingOptions, sign: str) -> str:
     :precondition (and
       ({flag} ?l1 ?p)
       (affects ?l1 ?l2))
-    :effect ({sign} (angle ?l2 ?p) (* #t {speed})))
+    :effect ({sign} (angle ?l2 ?p) (* #t {carried})))
+{azimuth}"""
+
+
+def _azimuth_plane(options: EncodingOptions) -> str | None:
+    """The horizontal plane whose angle a vertical turn also changes (projected carry only)."""
+    if options.carry != "projected":
+        return None
+    others = [p for p in options.planes if p != options.gravity_plane]
+    return HORIZONTAL_PLANE if HORIZONTAL_PLANE in others else None
+
+
+def _azimuth(options: EncodingOptions, name: str, when: str, sign: str, rate: str) -> str:
+    """``projected`` carry: process ``name`` in which a vertical turn of ?l1 (going on while
+    ``when`` holds, at ``rate``) also moves the azimuth of the carried ?l2, at ``rate`` times
+    the problem constant ``(carry-theta ?l1 ?l2)``. Empty for the rigid carry."""
+    h = _azimuth_plane(options)
+    if h is None:
+        return ""
+    return f"""
+  ;; A vertical turn of ?l1 also turns a carried ?l2 about the vertical unless ?l2 lies in
+  ;; ?l1's plane (projected carry; the factor is fixed at the problem's start).
+  (:process {name}
+    :parameters (?l1 - link ?l2 - link)
+    :precondition (and
+      {when})
+    :effect ({sign} (angle ?l2 {h}) (* #t (* {rate} (carry-theta ?l1 ?l2)))))
 """
+
+def _carried(options: EncodingOptions, rate: str, plane: str) -> str:
+    """The rate at which a carried link ?l2 follows ?l1's ``rate`` on ``plane``."""
+    if options.carry == "projected":
+        return f"(* {rate} (carry ?l1 ?l2 {plane}))"
+    return rate
 
 
 def _wrap_events() -> str:
@@ -153,6 +192,9 @@ def _ucm(options: EncodingOptions) -> str:
     for sign, lo, hi in (("decrease", "0", "180"), ("increase", "180", "360")):
         rng = f"(> (angle ?l {g}) {lo})\n      (< (angle ?l {g}) {hi})"
         rng1 = rng.replace("?l ", "?l1 ")
+        azimuth = _azimuth(options, f"propagate-gravity-{sign}-azimuth",
+                           f"(affects ?l1 ?l2)\n      {_feels('?l1')}\n      {rng1}", sign,
+                           "(speed-g)")
         blocks.append(f"""
   ;; Gravity pulls ?l toward rest (0 == 360) at constant speed; it stops at rest, and exactly
   ;; 180 stays. DEPARTURE (VAL): "feels gravity" is derived from the state, no Boolean effect.
@@ -169,8 +211,8 @@ def _ucm(options: EncodingOptions) -> str:
       (affects ?l1 ?l2)
       {_feels("?l1")}
       {rng1})
-    :effect ({sign} (angle ?l2 {g}) (* #t (speed-g))))
-""")
+    :effect ({sign} (angle ?l2 {g}) (* #t {_carried(options, "(speed-g)", g)})))
+{azimuth}""")
     return "".join(blocks)
 
 
@@ -179,6 +221,9 @@ def _uacm_events(options: EncodingOptions, sign: str) -> str:
     flag = f"{sign}ing-angle-gravity".replace("eing", "ing")
     other = "increasing-angle-gravity" if sign == "decrease" else "decreasing-angle-gravity"
     m = fmt_number(WRAP_MARGIN)
+    azimuth = _azimuth(options, f"propagate-gravity-{sign}-azimuth",
+                       f"(affects ?l1 ?l2)\n      ({flag} ?l1)\n      {_feels('?l1')}", sign,
+                       "(gravity-speed ?l1)")
     if sign == "decrease":
         below = fmt_number(180 - WRAP_MARGIN)
         start_range = f"(> (angle ?l {g}) {m})\n      (< (angle ?l {g}) {below})"
@@ -226,8 +271,8 @@ def _uacm_events(options: EncodingOptions, sign: str) -> str:
       (affects ?l1 ?l2)
       ({flag} ?l1)
       {_feels("?l1")})
-    :effect ({sign} (angle ?l2 {g}) (* #t (gravity-speed ?l1))))
-"""
+    :effect ({sign} (angle ?l2 {g}) (* #t {_carried(options, "(gravity-speed ?l1)", g)})))
+{azimuth}"""
 
 
 def _uacm(options: EncodingOptions) -> str:

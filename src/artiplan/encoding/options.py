@@ -9,6 +9,8 @@ from artiplan.model import PLANES, VERTICAL_PLANE
 
 Model = Literal["ng", "ucm", "uacm"]
 MODELS: tuple[str, ...] = ("ng", "ucm", "uacm")
+Carry = Literal["rigid", "projected"]
+CARRIES: tuple[str, ...] = ("rigid", "projected")
 
 
 @dataclass(frozen=True)
@@ -27,6 +29,14 @@ class EncodingOptions:
         reach_time: Optional time [s] the robot needs between releasing a link and the next
             grasp (``None``: grasps are instantaneous, as in the paper). Gravity keeps acting
             meanwhile.
+        carry: How a vertical-plane rotation (the robot's or gravity's) moves the links it
+            carries. ``rigid`` (the paper): every carried link's gamma changes at the rotated
+            link's rate. ``projected``: at that rate times ``cos(theta_j - theta_k)``, the
+            exact instantaneous rate for a link j carried by a turn of link k about the
+            horizontal normal of k's vertical plane (the rigid rule is right only for links in
+            that plane; a link across it barely changes gamma). The factors are problem
+            constants ``(carry ?k ?j ?p)`` computed from the initial thetas (1 on other planes:
+            a turn about the vertical is exact).
     """
 
     model: Model = "ng"
@@ -37,6 +47,7 @@ class EncodingOptions:
     planes: tuple[str, ...] = PLANES
     gravity_plane: str = VERTICAL_PLANE
     reach_time: float | None = None
+    carry: Carry = "rigid"
 
     def __post_init__(self) -> None:
         if self.model not in MODELS:
@@ -50,6 +61,8 @@ class EncodingOptions:
             raise ValueError(
                 f"gravity plane {self.gravity_plane!r} is not one of the planes {self.planes}"
             )
+        if self.carry not in CARRIES:
+            raise ValueError(f"unknown carry {self.carry!r}; valid: {', '.join(CARRIES)}")
         if self.reach_time is not None and self.reach_time < 0:
             raise ValueError(f"reach_time must be >= 0, got {self.reach_time}")
 

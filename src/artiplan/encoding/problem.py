@@ -2,10 +2,12 @@
 
 from __future__ import annotations
 
+import math
+
 from artiplan.encoding.domain import domain_name
 from artiplan.encoding.goals import GoalSpec, fmt_number, make_goal
 from artiplan.encoding.options import EncodingOptions
-from artiplan.model import ArticulatedObject, Configuration
+from artiplan.model import HORIZONTAL_PLANE, ArticulatedObject, Configuration
 from artiplan.model.angles import wrap_deg
 
 
@@ -29,11 +31,45 @@ def _init_facts(obj: ArticulatedObject, init: Configuration, options: EncodingOp
         facts += [f"(= (gravity-speed {lk}) 0)" for lk in obj.links]
     if options.reach_time is not None:
         facts += [f"(= (reach-time) {fmt_number(options.reach_time)})", "(= (reach-clock) 0)"]
+    if options.carry == "projected":
+        facts += _carry_facts(obj, init, options)
     for lk in obj.links:
         for p in options.planes:
             value = wrap_deg(init.angle(obj.index(lk), p))
             facts.append(f"(= (angle {lk} {p}) {fmt_number(value)})")
     return facts
+
+
+#: Largest |d theta_j / d phi| of the projected carry (cot 18 deg): near the vertical a link's
+#: azimuth swings fast but its direction hardly moves.
+CARRY_THETA_CAP = 3.0
+
+
+def _carry_facts(
+    obj: ArticulatedObject, init: Configuration, options: EncodingOptions
+) -> list[str]:
+    """``(carry k j p)`` for every carried pair: ``cos(theta_j - theta_k)`` on the gravity
+    (vertical) plane, 1 elsewhere; and ``(carry-theta k j)``: how fast j's azimuth turns per
+    unit vertical turn of k (see ``EncodingOptions.carry``)."""
+    out = []
+    for a, b in obj.affects():
+        for p in options.planes:
+            if p == options.gravity_plane:
+                d = init.theta[obj.index(b) - 1] - init.theta[obj.index(a) - 1]
+                value = round(math.cos(math.radians(d)), 4)
+            else:
+                value = 1.0
+            out.append(f"(= (carry {a} {b} {p}) {fmt_number(value)})")
+        if options.gravity_plane != HORIZONTAL_PLANE and HORIZONTAL_PLANE in options.planes:
+            # d theta_j / d phi = -cot(gamma_j) sin(theta_j - theta_k) per unit turn of k
+            # (capped: theta is ill-defined for a nearly vertical link).
+            d = math.radians(init.theta[obj.index(b) - 1] - init.theta[obj.index(a) - 1])
+            g = math.radians(init.gamma[obj.index(b) - 1])
+            s, c = math.sin(g), math.cos(g)
+            factor = -math.sin(d) * c / s if abs(s) > 1e-9 else 0.0
+            factor = max(-CARRY_THETA_CAP, min(CARRY_THETA_CAP, factor))
+            out.append(f"(= (carry-theta {a} {b}) {fmt_number(round(factor, 4))})")
+    return out
 
 
 def problem_pddl(

@@ -17,7 +17,7 @@ from dataclasses import dataclass, replace
 from typing import Any, cast
 
 from artiplan.encoding import EncodingOptions
-from artiplan.encoding.options import Model
+from artiplan.encoding.options import Carry, Model
 from artiplan.encoding.suite import make_task
 from artiplan.execution.calibrate import calibrate
 from artiplan.execution.config import LoopConfig
@@ -42,6 +42,8 @@ class FidelityConfig:
         models: Gravity models to measure.
         closed_loop: Also run with re-planning.
         plan_time_limit: Wall limit of one planner call [s].
+        carry: The encodings' carry rule (``rigid``: the paper's; ``projected``: see
+            ``EncodingOptions.carry``); a projected run's parameters are labelled so.
     """
 
     tasks: int = 20
@@ -52,6 +54,7 @@ class FidelityConfig:
     models: tuple[str, ...] = ("ng", "ucm", "uacm")
     closed_loop: bool = True
     plan_time_limit: float = 30.0
+    carry: str = "rigid"
 
 
 def prediction_errors(log: RunLog) -> dict[str, Any]:
@@ -72,6 +75,13 @@ def prediction_errors(log: RunLog) -> dict[str, Any]:
 def _options(model: str, speed_g: float, acceleration: float) -> EncodingOptions:
     return EncodingOptions(cast(Model, model), speed_g=round(speed_g, 4),
                            acceleration=round(acceleration, 4))
+
+
+def _label(calibration: str, carry: str) -> str:
+    """The table's parameters column: the calibration, and the carry rule unless rigid."""
+    if carry == "rigid":
+        return calibration
+    return f"{carry} carry" if calibration == "-" else f"{calibration}, {carry} carry"
 
 
 def _settings(model: str, cal: Any) -> list[tuple[str, EncodingOptions]]:
@@ -95,7 +105,9 @@ def run_fidelity(config: FidelityConfig, make_world: Callable[..., Any],
         for k in range(1, config.tasks + 1):
             task = make_task(size, k, seed=config.seed)
             for model in config.models:
-                runs = [("open", label, opts) for label, opts in _settings(model, cal)]
+                carry = cast(Carry, config.carry)
+                runs = [("open", _label(label, carry), replace(opts, carry=carry))
+                        for label, opts in _settings(model, cal)]
                 if config.closed_loop:
                     runs.append(("closed", runs[-1][1], runs[-1][2]))
                 for mode, label, opts in runs:
@@ -122,6 +134,7 @@ def _row(config: FidelityConfig, size: int, task: int, model: str, label: str, m
     return {
         "schema": SCHEMA_FIDELITY, "preset": config.preset, "hands": world.hands.kind,
         "size": size, "task": task, "model": model, "calibration": label, "mode": mode,
+        "carry": opts.carry,
         "speed_g": opts.speed_g if model == "ucm" else None,
         "acceleration": opts.acceleration if model == "uacm" else None,
         "planned": bool(log.plans and log.plans[0]["status"] == "solved"),
