@@ -26,6 +26,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
         default=None,
         help="seconds the arms need between a release and the next grasp (default: none)",
     )
+    parser.add_argument("--carry", choices=("rigid", "projected"), default="rigid",
+                        help="how vertical turns move carried links: rigid (the paper, "
+                             "default) or projected (docs/encodings.md)")
     parser.add_argument("--seed", type=int, default=0, help="seed of random configurations")
     parser.add_argument("--goal-style", choices=GOAL_STYLES, default="threshold")
     parser.add_argument("--init", type=Path, help="initial configuration (JSON)")
@@ -50,6 +53,7 @@ def run(args: argparse.Namespace) -> int:
             speed_g=args.speed_g,
             acceleration=args.acceleration,
             reach_time=args.reach_time,
+            carry=args.carry,
         )
     except ValueError as exc:
         raise UsageError(str(exc)) from None
