@@ -365,7 +365,6 @@ class BaxterHands(GraspChoice, Hands):
             iterations=2,
             start=self._target_q[hand],
             nullspace=TRACK_NULLSPACE_GAIN,
-            tol=(1e-5, 1e-4),  # tracking: as exact as two iterations get
         )
 
     def control(self, dt: float) -> None:
