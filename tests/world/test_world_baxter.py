@@ -85,7 +85,7 @@ def test_baxter_grasp_candidates_include_points_away_from_the_shared_joint() -> 
 def test_baxter_assign_picks_the_pairing_in_which_both_hands_reach(monkeypatch) -> None:
     """The right hand is made unable to reach L3 (every candidate 2 cm short): the pairing
     left-holds/right-rotates is then refused although its scores are otherwise as good."""
-    from artiplan.world.grasping import REACH_TOLERANCE, UNREACHABLE
+    from artiplan.world.grasping import UNREACHABLE
 
     obj = ArticulatedObject(4)
     conf = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
@@ -105,8 +105,6 @@ def test_baxter_assign_picks_the_pairing_in_which_both_hands_reach(monkeypatch) 
     assert hands.assign("L2", "L3") == ("right", "left")
     world.hold_and_rotate("L2", "L3", "z-axis", 1, 10.0)  # grasps without OutOfReachError
     assert hands.held("right") == "L2" and hands.held("left") == "L3"
-    assert max(hands.last_jump_m.values()) < 2.0  # sanity: finite jumps
-    assert REACH_TOLERANCE < 0.02
 
 
 def test_baxter_grasp_raises_only_when_no_candidate_reaches(monkeypatch) -> None:
