@@ -40,35 +40,41 @@ def _init_facts(obj: ArticulatedObject, init: Configuration, options: EncodingOp
     return facts
 
 
-#: Largest |d theta_j / d phi| of the projected carry (cot 18 deg): near the vertical a link's
-#: azimuth swings fast but its direction hardly moves.
-CARRY_THETA_CAP = 3.0
+#: Below this angle from the vertical [deg] (either way) a carried link's azimuth is too
+#: ill-defined for the projection: the link swings into the turning link's plane whatever its
+#: azimuth says, so the paper's rule (carry 1, azimuth unchanged) is kept for it. Measured: with
+#: the projection applied to a link 3 deg from hanging, the planner "turned" its azimuth by
+#: 82 deg in a 27 deg turn of its neighbour (factor cot 3 deg, capped), which physics did not do.
+CARRY_MIN_GAMMA = 30.0
+
+
+def _carry_factors(theta_k: float, theta_j: float, gamma_j: float) -> tuple[float, float]:
+    """(gamma factor, theta factor) of link j carried by a vertical turn of link k [deg in]:
+    ``cos(theta_j - theta_k)`` and ``-cot(gamma_j) sin(theta_j - theta_k)``, or the rigid
+    (1, 0) for a link within :data:`CARRY_MIN_GAMMA` of the vertical."""
+    g = math.radians(gamma_j)
+    if abs(math.sin(g)) < math.sin(math.radians(CARRY_MIN_GAMMA)):
+        return 1.0, 0.0
+    d = math.radians(theta_j - theta_k)
+    return math.cos(d), -math.sin(d) * math.cos(g) / math.sin(g)
 
 
 def _carry_facts(
     obj: ArticulatedObject, init: Configuration, options: EncodingOptions
 ) -> list[str]:
-    """``(carry k j p)`` for every carried pair: ``cos(theta_j - theta_k)`` on the gravity
-    (vertical) plane, 1 elsewhere; and ``(carry-theta k j)``: how fast j's azimuth turns per
-    unit vertical turn of k (see ``EncodingOptions.carry``)."""
+    """``(carry k j p)`` for every carried pair: the gamma factor on the gravity (vertical)
+    plane, 1 elsewhere; and ``(carry-theta k j)``: how fast j's azimuth turns per unit
+    vertical turn of k (see ``EncodingOptions.carry`` and :func:`_carry_factors`)."""
     out = []
+    azimuth = options.gravity_plane != HORIZONTAL_PLANE and HORIZONTAL_PLANE in options.planes
     for a, b in obj.affects():
+        i, j = obj.index(a) - 1, obj.index(b) - 1
+        k_gamma, k_theta = _carry_factors(init.theta[i], init.theta[j], init.gamma[j])
         for p in options.planes:
-            if p == options.gravity_plane:
-                d = init.theta[obj.index(b) - 1] - init.theta[obj.index(a) - 1]
-                value = round(math.cos(math.radians(d)), 4)
-            else:
-                value = 1.0
-            out.append(f"(= (carry {a} {b} {p}) {fmt_number(value)})")
-        if options.gravity_plane != HORIZONTAL_PLANE and HORIZONTAL_PLANE in options.planes:
-            # d theta_j / d phi = -cot(gamma_j) sin(theta_j - theta_k) per unit turn of k
-            # (capped: theta is ill-defined for a nearly vertical link).
-            d = math.radians(init.theta[obj.index(b) - 1] - init.theta[obj.index(a) - 1])
-            g = math.radians(init.gamma[obj.index(b) - 1])
-            s, c = math.sin(g), math.cos(g)
-            factor = -math.sin(d) * c / s if abs(s) > 1e-9 else 0.0
-            factor = max(-CARRY_THETA_CAP, min(CARRY_THETA_CAP, factor))
-            out.append(f"(= (carry-theta {a} {b}) {fmt_number(round(factor, 4))})")
+            value = k_gamma if p == options.gravity_plane else 1.0
+            out.append(f"(= (carry {a} {b} {p}) {fmt_number(round(value, 4))})")
+        if azimuth:
+            out.append(f"(= (carry-theta {a} {b}) {fmt_number(round(k_theta, 4))})")
     return out
 
 

@@ -211,7 +211,8 @@ def plot_fidelity(table: list[dict[str, Any]], folder: str | Path) -> list[Path]
         fig, axes = plt.subplots(1, len(groups), figsize=(5 * len(groups), 4), squeeze=False)
         for ax, (preset, size) in zip(axes[0], groups, strict=True):
             rows = [r for r in table if r["preset"] == preset and r["size"] == size]
-            labels = [f"{r['model'].upper()}\n{r['calibration']}" for r in rows]
+            labels = [f"{r['model'].upper()}\n" + r["calibration"].replace(", ", "\n")
+                      for r in rows]
             x = np.arange(len(rows))
             for k, (key, lab) in enumerate(series):
                 vals = [r[key] if r[key] is not None else 0.0 for r in rows]
