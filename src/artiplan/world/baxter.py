@@ -12,15 +12,17 @@ exists), then clearance, then joint-limit room over a +-30 deg turn.
 Limits of this implementation (honest): the fingers close for show, the weld holds the link;
 by default an arm *jumps* to its grasp (its IK solution is written into the state); with
 ``approach_s`` > 0 it moves there in simulated time (after backing every opened hand that is
-near the object 6 cm off it), and the last few millimetres still jump. Arm contacts are off in
-the physics: nothing stops an arm that does pass through an obstacle. With
-``avoid_collisions`` the grasps are *chosen* clear of the torso, the other arm, the pedestal,
-table, fixture and other links (:mod:`artiplan.world.collision`), at the grasp and at the
-rotating arm's poses turned +-30 deg on both planes (the holding arm at its grasp); the grasp
-IK is pushed away from obstacles. Not avoided: contacts during the rotation that the sweep's
-four sample poses miss (the tracking IK itself is blind to obstacles), arm-vs-link contacts
-during the rotation (links are not turned in the check), and collisions on the way of an
-approach or a retreat (only measured: ``last_approach_clearance``).
+near the object 6 cm off it) through a pre-grasp pose 7 cm back along the hand's approach
+axis, then straight in (:mod:`artiplan.world.approach`); the last few millimetres still
+jump. Arm contacts are off in the physics: nothing stops an arm that does pass through an
+obstacle. With ``avoid_collisions`` the grasps are *chosen* clear of the torso, the other arm,
+the pedestal, table, fixture and other links (:mod:`artiplan.world.collision`), at the grasp
+and at the rotating arm's poses turned +-30 deg on both planes (the holding arm at its grasp);
+the grasp IK is pushed away from obstacles. Not avoided: contacts during the rotation that
+the sweep's four sample poses miss (the tracking IK itself is blind to obstacles), arm-vs-link
+contacts during the rotation (links are not turned in the check), and collisions on the way
+of a retreat or of an approach (sampled: a first leg through an obstacle takes a detour when
+that is clearer at its samples; ``last_approach_clearance``).
 """
 
 from __future__ import annotations
@@ -31,6 +33,18 @@ import mujoco
 import numpy as np
 
 from artiplan.model import ArticulatedObject
+from artiplan.world.approach import (  # noqa: F401 - re-exported (public names)
+    APPROACH_DT,
+    APPROACH_RETREAT_M,
+    APPROACH_RETREAT_S,
+    APPROACH_SETTLE_S,
+    ARM_JOINTS,
+    PREGRASP_M,
+    PREGRASP_SHARE,
+    RETREAT_M,
+    RETREAT_S,
+    ApproachMotion,
+)
 from artiplan.world.baxter_model import (  # noqa: F401 - re-exported (public names)
     BAXTER_BASE,
     PREFIX,
@@ -38,46 +52,30 @@ from artiplan.world.baxter_model import (  # noqa: F401 - re-exported (public na
     baxter_layout,
     baxter_xml_path,
 )
-from artiplan.world.collision import ArmGeoms, arm_geoms, clearance
+from artiplan.world.collision import ArmGeoms, arm_geoms
 from artiplan.world.grasping import (  # noqa: F401 - re-exported (public names)
     REACH_TOLERANCE,
     SWEEP_DEG,
     TRACK_NULLSPACE_GAIN,
     Candidate,
-    GraspChoice,
     OutOfReachError,
 )
 from artiplan.world.hands import Hands
 from artiplan.world.rotations import Vec, quat_conj, quat_mul, quat_to_mat
 from artiplan.world.servo import ServoGains
 
-ARM_JOINTS = ("s0", "s1", "e0", "e1", "w0", "w1", "w2")
 #: A comfortable start: elbows bent, hands in front of the torso.
 HOME = (0.0, -0.55, 0.0, 1.2, 0.0, 0.9, 0.0)
-#: Interval [s] between joint-target updates of an approach motion.
-APPROACH_DT = 0.02
-#: Time [s] the arms get to settle on their grasps after an approach.
-APPROACH_SETTLE_S = 0.2
-#: Default retreat after a release: this far [m] back along the hand's approach axis, in
-#: this many simulated seconds.
-RETREAT_M = 0.1
-RETREAT_S = 0.5
-#: An approach first backs every opened hand whose grasp point is nearer than RETREAT_NEAR
-#: [m] to a link APPROACH_RETREAT_M [m] along its approach axis, in APPROACH_RETREAT_S [s].
-RETREAT_NEAR = 0.06
-APPROACH_RETREAT_M = 0.06
-APPROACH_RETREAT_S = 0.24
-#: Joint configurations checked for clearance along an approach (evenly spaced, ends excluded).
-PATH_CHECKS = 4
 
 
-class BaxterHands(GraspChoice, Hands):
+class BaxterHands(ApproachMotion, Hands):
     """Baxter's two arms as hands: IK + joint PD with bias compensation, welds as grasps."""
 
     #: The arm adds its own lag: gentler outer-loop gains than the virtual hands' (measured:
     #: kp 1, ki 10 tracked 11 of 12 random 4-link rotations; kp 2, ki 40 oscillates).
     servo_gains = ServoGains(kp=1.0, ki=10.0)
     last_approach_clearance: dict[str, tuple[float, float]]
+    last_pregrasp: dict[str, Vec]
 
     def __init__(
         self,
@@ -96,81 +94,7 @@ class BaxterHands(GraspChoice, Hands):
         self.approach_s = approach_s
         self.avoid_collisions = avoid_collisions
 
-    # -- motions between grasps ------------------------------------------------------------
-    def approach(self, pairs: list[tuple[str, str]], advance: Callable[[float], None]) -> None:
-        """Move each (hand, link) arm to its grasp in simulated time, advancing the world with
-        ``advance(dt)``: first every opened hand still near the object backs off
-        :data:`APPROACH_RETREAT_M` along its approach axis (:data:`APPROACH_RETREAT_S`), then
-        the arms move to the grasps :meth:`assign` chose (joint-space, smooth) in
-        ``approach_s`` seconds, then settle; the final grasp corrects what the falling links
-        moved meanwhile. Nothing happens when ``approach_s`` is 0 (the arms jump at grasp)."""
-        if self.approach_s <= 0:
-            return
-        goals: dict[str, Vec] = {}
-        for h, link in pairs:
-            c = self._chosen(h, link)
-            goals[h] = c.q
-            self._planned[h] = (link, c.index)  # the grasp then keeps this candidate
-        starts = {h: self.data.qpos[self._q[h]].copy() for h in self.names}
-        near = [h for h in self.names if self._held[h] is None and self._near_object(h)]
-        if near:
-            away = {h: self._backed_off(h, APPROACH_RETREAT_M) for h in near}
-            self._move({h: starts[h] for h in near}, away, APPROACH_RETREAT_S, advance, 0.0)
-            starts.update(away)
-        self.last_approach_clearance = {
-            h: self._path_clearance(h, dict(pairs)[h], starts, goals) for h in goals
-        }
-        self._move({h: starts[h] for h in goals}, goals, self.approach_s, advance)
-
-    def _chosen(self, hand: str, link: str) -> Candidate:
-        """The grasp :meth:`assign` chose for (hand, link) if it is still current, else the
-        best one now."""
-        plan = self._plan.get(hand)
-        if plan is not None and plan[0].link == link and plan[1] == self.data.time:
-            return plan[0]
-        return self.best_grasp(hand, link)
-
-    def _near_object(self, hand: str) -> bool:
-        """Whether ``hand``'s grasp point is within :data:`RETREAT_NEAR` of a link."""
-        r_h = self.data.xmat[self._hand[hand]].reshape(3, 3)
-        point = self.data.xpos[self._hand[hand]] + self._depth * r_h[:, 2]
-        for link, gid in self.geoms[hand].links.items():
-            b = self.model.body(link).id
-            base, u = self.data.xpos[b], -self.data.xmat[b].reshape(3, 3)[:, 2]
-            length = 2.0 * float(self.model.geom_size[gid, 1])
-            t = float(np.clip(np.dot(point - base, u), 0.0, length))
-            if np.linalg.norm(point - base - t * u) < RETREAT_NEAR:
-                return True
-        return False
-
-    def _backed_off(self, hand: str, distance: float) -> Vec:
-        """Joint angles [rad] putting ``hand`` ``distance`` [m] back along its approach axis."""
-        r_h = self.data.xmat[self._hand[hand]].reshape(3, 3)
-        pos = self.data.xpos[self._hand[hand]] - distance * r_h[:, 2]
-        start = self.data.qpos[self._q[hand]].copy()
-        quat = self.data.xquat[self._hand[hand]].copy()
-        return self.solve_ik(hand, pos, quat, iterations=100, start=start)
-
-    def _path_clearance(
-        self, hand: str, link: str, starts: dict[str, Vec], goals: dict[str, Vec]
-    ) -> tuple[float, float]:
-        """Smallest clearance [m] of ``hand``'s arm on its way to ``link`` at
-        :data:`PATH_CHECKS` configurations along the joint-space path (both arms moving): to
-        the torso, the other arm and the scene; and to those or the object's links (the
-        gripper may touch ``link``; the links as they are now)."""
-        d = self.ik_data
-        robot, links = np.inf, np.inf
-        for i in range(1, PATH_CHECKS + 1):
-            x = i / (PATH_CHECKS + 1)
-            s = x * x * (3.0 - 2.0 * x)
-            d.qpos[:] = self.data.qpos
-            for h, q in starts.items():
-                d.qpos[self._q[h]] = q + s * (goals[h] - q) if h in goals else q
-            mujoco.mj_kinematics(self.model, d)
-            robot = min(robot, clearance(self.model, d, self.geoms[hand], link, False)[0])
-            links = min(links, clearance(self.model, d, self.geoms[hand], link, True)[0])
-        return float(robot), float(links)
-
+    # -- motions between grasps (the approach itself: :mod:`artiplan.world.approach`) ------
     def retreat(
         self,
         hands: list[str],
@@ -188,32 +112,7 @@ class BaxterHands(GraspChoice, Hands):
                 self.release(h)
             starts[h] = self.data.qpos[self._q[h]].copy()
             goals[h] = self._backed_off(h, distance)
-        self._move(starts, goals, duration_s, advance)
-
-    def _move(
-        self,
-        starts: dict[str, Vec],
-        goals: dict[str, Vec],
-        duration_s: float,
-        advance: Callable[[float], None],
-        settle_s: float = APPROACH_SETTLE_S,
-    ) -> None:
-        """Joint-space smoothstep from ``starts`` to ``goals`` in ``duration_s`` simulated
-        seconds, then ``settle_s`` of settling."""
-        n = max(1, int(round(duration_s / APPROACH_DT)))
-        dt = duration_s / n
-        for i in range(1, n + 1):
-            x = i / n
-            s = x * x * (3.0 - 2.0 * x)  # smoothstep: start and stop at rest
-            ds = 6.0 * x * (1.0 - x) / duration_s  # its rate [1/s]
-            for h in goals:
-                self._target_q[h] = starts[h] + s * (goals[h] - starts[h])
-                self._target_qd[h] = ds * (goals[h] - starts[h])
-            advance(dt)
-        for h in goals:
-            self._target_qd[h] = np.zeros(len(ARM_JOINTS))
-        if settle_s > 0:
-            advance(settle_s)
+        self._move({h: [starts[h], goals[h]] for h in hands}, duration_s, advance)
 
     def extend_spec(self, spec: mujoco.MjSpec, obj: ArticulatedObject) -> None:
         attach_baxter(spec, obj)
@@ -300,6 +199,8 @@ class BaxterHands(GraspChoice, Hands):
         #: Per hand, smallest arm clearance [m] at the intermediate configurations of the
         #: last approach: (torso, other arm, scene; the same or other links).
         self.last_approach_clearance = {}
+        #: Per hand, the pre-grasp joint angles [rad] of the last approach.
+        self.last_pregrasp = {}
 
     # -- grasping ------------------------------------------------------------------------
     def grasp(self, hand: str, link: str) -> None:
