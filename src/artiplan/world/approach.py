@@ -33,7 +33,7 @@ RETREAT_NEAR = 0.06
 APPROACH_RETREAT_M = 0.06
 APPROACH_RETREAT_S = 0.24
 #: Joint configurations checked for clearance along an approach (evenly spaced, ends excluded).
-PATH_CHECKS = 4
+PATH_CHECKS = 8
 #: ... and on the last leg also this far (smoothstep parameter) along it.
 END_CHECK = 0.94
 #: Pre-grasp pose: this far [m] back along the approach axis from the grasp, reached in this
@@ -41,8 +41,9 @@ END_CHECK = 0.94
 PREGRASP_M = 0.07
 PREGRASP_SHARE = 0.75
 PREGRASP_STEPS = 3
-#: A first leg through an obstacle may go through the pre-grasp pose backed this far [m] more.
-DETOUR_M = 0.12
+#: A first leg through an obstacle may go through the pre-grasp pose backed this far [m] more
+#: (or the start backed the first distance).
+DETOURS_M = (0.12, 0.24)
 
 
 def _along(path: list[Vec], s: float) -> tuple[Vec, Vec]:
@@ -117,18 +118,23 @@ class ApproachMotion(GraspChoice):
     def _clearer_leg(
         self, hand: str, link: str, firsts: dict[str, list[Vec]], final: list[Vec]
     ) -> list[Vec]:
-        """``hand``'s first leg: direct to the pre-grasp pose, or through the pre-grasp pose
-        backed :data:`DETOUR_M` further when the direct leg's clearance is negative and the
-        detour's is larger."""
-        direct = self._path_clearance(hand, link, [firsts])[0]
+        """``hand``'s first leg: direct to the pre-grasp pose or, when the direct leg's
+        sampled clearance (robot, scene and other links) is negative, through the clearest of
+        a few waypoints: the pre-grasp pose or the start backed :data:`DETOURS_M` further."""
+        direct = self._path_clearance(hand, link, [firsts])[1]
         if direct >= 0 or np.array_equal(final[0], final[-1]):
             return firsts[hand]
-        pos, quat = self._hand_pose(hand, final[0])
-        via_pos = pos - DETOUR_M * quat_to_mat(quat)[:, 2]
-        via = self.solve_ik(hand, via_pos, quat, iterations=100, start=final[0])
-        detour = [firsts[hand][0], via, final[0]]
-        other = self._path_clearance(hand, link, [{**firsts, hand: detour}])[0]
-        return detour if other > direct else firsts[hand]
+        best, leg = direct, firsts[hand]
+        for end, dists in ((final[0], DETOURS_M), (firsts[hand][0], DETOURS_M[:1])):
+            pos, quat = self._hand_pose(hand, end)
+            for dist in dists:
+                via_pos = pos - dist * quat_to_mat(quat)[:, 2]
+                via = self.solve_ik(hand, via_pos, quat, iterations=100, start=end)
+                detour = [firsts[hand][0], via, final[0]]
+                score = self._path_clearance(hand, link, [{**firsts, hand: detour}])[1]
+                if score > best:
+                    best, leg = score, detour
+        return leg
 
     def _hand_pose(self, hand: str, q: Vec) -> tuple[Vec, Vec]:
         """World pose (position [m], wxyz) of ``hand`` with its arm at ``q``."""
