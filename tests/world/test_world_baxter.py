@@ -155,3 +155,46 @@ def test_baxter_approach_backs_off_from_the_object_first() -> None:
     world.hands.grasp(hold, "L3")
     world.hands.grasp(rot, "L4")
     assert max(hands.last_jump_m.values()) < 0.03
+
+
+@pytest.mark.slow
+def test_baxter_approach_goes_through_the_pre_grasp_pose_and_stays_clear() -> None:
+    from artiplan.world.approach import PREGRASP_M, PREGRASP_SHARE
+    from artiplan.world.collision import arm_geoms, clearance
+    from artiplan.world.rotations import quat_to_mat
+
+    obj = ArticulatedObject(4)
+    conf = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
+    world = make_world(obj, conf, hands="baxter", approach_s=1.0)
+    hands = world.hands
+    world.hold_and_rotate("L2", "L3", "z-axis", 1, 10.0)
+    world.run_until(world.time + 0.5)
+    world.stop(release=True)
+    hold, rot = hands.assign("L3", "L4")
+    links = {hold: "L3", rot: "L4"}
+    grasps = {h: hands._chosen(h, links[h]) for h in links}
+    geoms = {h: arm_geoms(world.model, h, list(obj.links)) for h in links}
+    t_pre = world.time + 0.24 + PREGRASP_SHARE * 1.0  # after the back-off and the first leg
+    at_pre: dict[str, np.ndarray] = {}
+    worst = {h: np.inf for h in links}  # smallest clearance during the approach
+
+    def advance(dt: float) -> None:
+        world.step(dt)
+        for h in links:  # fingers included; only the hand's own link may be touched
+            dist = clearance(world.model, world.data, geoms[h], links[h])[0]
+            worst[h] = min(worst[h], dist)
+            if h not in at_pre and world.time >= t_pre - 1e-6:
+                at_pre[h] = world.data.xpos[hands._hand[h]].copy()
+
+    hands.approach([(hold, "L3"), (rot, "L4")], advance)
+    for h, c in grasps.items():
+        # The pre-grasp pose is the grasp moved PREGRASP_M back along the hand's z axis ...
+        pre_pos, pre_quat = hands._hand_pose(h, hands.last_pregrasp[h])
+        expected = c.pos - PREGRASP_M * quat_to_mat(c.quat)[:, 2]
+        assert np.linalg.norm(pre_pos - expected) < 0.003
+        assert abs(abs(float(np.dot(pre_quat, c.quat))) - 1.0) < 1e-4
+        # ... and the arm passes near it (servo lag) before closing in.
+        assert np.linalg.norm(at_pre[h] - expected) < 0.04, h
+    # Before the pre-grasp approach (one joint-space leg), the holding hand's fingers went
+    # 2 mm into a neighbouring link as they closed in (4-5 cm from the grasp).
+    assert worst[hold] > 0.0, worst
