@@ -2,8 +2,8 @@
 
 An approach backs opened hands that are still near the object off the links, moves each arm in
 joint space to a pre-grasp pose a few centimetres back along the hand's approach axis from its
-grasp (through a further-backed waypoint when the direct path's sampled configurations hit an
-obstacle and the detour's do less), then straight in along that axis through IK waypoints. The
+grasp (a detour through a further-backed waypoint exists but is off: :data:`DETOURS_M`), then
+straight in along that axis through IK waypoints. The
 path is checked at a few sampled configurations only; arm contacts are off in the physics.
 """
 
@@ -74,10 +74,10 @@ class ApproachMotion(GraspChoice):
         :data:`APPROACH_RETREAT_M` along its approach axis (:data:`APPROACH_RETREAT_S`), then
         the arms move in joint space to their pre-grasp poses (:data:`PREGRASP_M` back along
         the approach axis from the grasps :meth:`assign` chose; through a further-backed
-        waypoint when that path is clearer) in :data:`PREGRASP_SHARE` of ``approach_s``
-        seconds, then straight in (IK waypoints) in the rest, then settle; the final grasp
-        corrects what the falling links moved meanwhile. Nothing happens when ``approach_s``
-        is 0 (the arms jump at grasp)."""
+        waypoint if :data:`DETOURS_M` is set and that is clearer) in :data:`PREGRASP_SHARE`
+        of ``approach_s`` seconds, then straight in (IK waypoints) in the rest, then settle;
+        the final grasp corrects what the falling links moved meanwhile. Nothing happens when
+        ``approach_s`` is 0 (the arms jump at grasp)."""
         if self.approach_s <= 0:
             return
         links = dict(pairs)

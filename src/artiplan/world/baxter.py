@@ -21,8 +21,7 @@ and at the rotating arm's poses turned +-30 deg on both planes (the holding arm 
 the grasp IK is pushed away from obstacles. Not avoided: contacts during the rotation that
 the sweep's four sample poses miss (the tracking IK itself is blind to obstacles), arm-vs-link
 contacts during the rotation (links are not turned in the check), and collisions on the way
-of a retreat or of an approach (sampled: a first leg through an obstacle takes a detour when
-that is clearer at its samples; ``last_approach_clearance``).
+of a retreat or of an approach (measured only: ``last_approach_clearance``).
 """
 
 from __future__ import annotations
