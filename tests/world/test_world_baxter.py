@@ -126,15 +126,22 @@ def test_baxter_grasp_raises_only_when_no_candidate_reaches(monkeypatch) -> None
     assert hands.held("right") == "L3"
 
 
-@pytest.mark.slow
-def test_baxter_approach_backs_off_from_the_object_first() -> None:
+def _released_after_a_turn():  # type: ignore[no-untyped-def]
+    """A 4-link Baxter world (1 s approach) whose hands just let go after turning L3: both
+    hands start on the object."""
     obj = ArticulatedObject(4)
     conf = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
     world = make_world(obj, conf, hands="baxter", approach_s=1.0)
-    hands = world.hands
     world.hold_and_rotate("L2", "L3", "z-axis", 1, 10.0)
     world.run_until(world.time + 0.5)
     world.stop(release=True)
+    return world
+
+
+@pytest.mark.slow
+def test_baxter_approach_backs_off_from_the_object_first() -> None:
+    world = _released_after_a_turn()
+    hands = world.hands
     axes = {h: world.data.xmat[hands._hand[h]].reshape(3, 3)[:, 2].copy() for h in hands.names}
     starts = {h: world.data.xpos[hands._hand[h]].copy() for h in hands.names}
     backed: dict[str, float] = {h: 0.0 for h in hands.names}
@@ -163,17 +170,12 @@ def test_baxter_approach_goes_through_the_pre_grasp_pose_and_stays_clear() -> No
     from artiplan.world.collision import arm_geoms, clearance
     from artiplan.world.rotations import quat_to_mat
 
-    obj = ArticulatedObject(4)
-    conf = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
-    world = make_world(obj, conf, hands="baxter", approach_s=1.0)
+    world = _released_after_a_turn()
     hands = world.hands
-    world.hold_and_rotate("L2", "L3", "z-axis", 1, 10.0)
-    world.run_until(world.time + 0.5)
-    world.stop(release=True)
     hold, rot = hands.assign("L3", "L4")
     links = {hold: "L3", rot: "L4"}
     grasps = {h: hands._chosen(h, links[h]) for h in links}
-    geoms = {h: arm_geoms(world.model, h, list(obj.links)) for h in links}
+    geoms = {h: arm_geoms(world.model, h, list(world.obj.links)) for h in links}
     t_pre = world.time + 0.24 + PREGRASP_SHARE * 1.0  # after the back-off and the first leg
     at_pre: dict[str, np.ndarray] = {}
     worst = {h: np.inf for h in links}  # smallest clearance during the approach

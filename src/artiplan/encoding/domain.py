@@ -27,7 +27,7 @@ from __future__ import annotations
 
 from artiplan.encoding.goals import fmt_number
 from artiplan.encoding.options import EncodingOptions
-from artiplan.model import HORIZONTAL_PLANE, ArticulatedObject
+from artiplan.model import ArticulatedObject
 
 #: Margin [deg] of the wrap-around below 0 and of UACM's start/stop hysteresis. It must exceed
 #: twice VAL's comparison slack (1e-4) by far, and be negligible next to a goal tolerance.
@@ -65,7 +65,7 @@ def _header(options: EncodingOptions) -> str:
         predicates.append("(reaching)")
     if options.carry == "projected":
         functions.append("(carry ?l1 - link ?l2 - link ?p - plane)")
-        if _azimuth_plane(options):
+        if options.azimuth_plane:
             functions.append("(carry-theta ?l1 - link ?l2 - link)")
     pred_text = "\n    ".join(predicates)
     func_text = "\n    ".join(functions)
@@ -132,19 +132,11 @@ def _robot(options: EncodingOptions, sign: str) -> str:
 {azimuth}"""
 
 
-def _azimuth_plane(options: EncodingOptions) -> str | None:
-    """The horizontal plane whose angle a vertical turn also changes (projected carry only)."""
-    if options.carry != "projected":
-        return None
-    others = [p for p in options.planes if p != options.gravity_plane]
-    return HORIZONTAL_PLANE if HORIZONTAL_PLANE in others else None
-
-
 def _azimuth(options: EncodingOptions, name: str, when: str, sign: str, rate: str) -> str:
     """``projected`` carry: process ``name`` in which a vertical turn of ?l1 (going on while
     ``when`` holds, at ``rate``) also moves the azimuth of the carried ?l2, at ``rate`` times
     the problem constant ``(carry-theta ?l1 ?l2)``. Empty for the rigid carry."""
-    h = _azimuth_plane(options)
+    h = options.azimuth_plane
     if h is None:
         return ""
     return f"""

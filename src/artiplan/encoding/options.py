@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Literal
 
-from artiplan.model import PLANES, VERTICAL_PLANE
+from artiplan.model import HORIZONTAL_PLANE, PLANES, VERTICAL_PLANE
 
 Model = Literal["ng", "ucm", "uacm"]
 MODELS: tuple[str, ...] = ("ng", "ucm", "uacm")
@@ -70,3 +70,11 @@ class EncodingOptions:
     def has_gravity(self) -> bool:
         """True for UCM and UACM."""
         return self.model != "ng"
+
+    @property
+    def azimuth_plane(self) -> str | None:
+        """With the ``projected`` carry: the horizontal plane whose angle a vertical turn also
+        changes (None for the rigid carry, or when there is no such plane)."""
+        if self.carry != "projected" or self.gravity_plane == HORIZONTAL_PLANE:
+            return None
+        return HORIZONTAL_PLANE if HORIZONTAL_PLANE in self.planes else None

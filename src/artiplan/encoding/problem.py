@@ -7,7 +7,7 @@ import math
 from artiplan.encoding.domain import domain_name
 from artiplan.encoding.goals import GoalSpec, fmt_number, make_goal
 from artiplan.encoding.options import EncodingOptions
-from artiplan.model import HORIZONTAL_PLANE, ArticulatedObject, Configuration
+from artiplan.model import ArticulatedObject, Configuration
 from artiplan.model.angles import wrap_deg
 
 
@@ -66,14 +66,13 @@ def _carry_facts(
     plane, 1 elsewhere; and ``(carry-theta k j)``: how fast j's azimuth turns per unit
     vertical turn of k (see ``EncodingOptions.carry`` and :func:`_carry_factors`)."""
     out = []
-    azimuth = options.gravity_plane != HORIZONTAL_PLANE and HORIZONTAL_PLANE in options.planes
     for a, b in obj.affects():
         i, j = obj.index(a) - 1, obj.index(b) - 1
         k_gamma, k_theta = _carry_factors(init.theta[i], init.theta[j], init.gamma[j])
         for p in options.planes:
             value = k_gamma if p == options.gravity_plane else 1.0
             out.append(f"(= (carry {a} {b} {p}) {fmt_number(round(value, 4))})")
-        if azimuth:
+        if options.azimuth_plane:
             out.append(f"(= (carry-theta {a} {b}) {fmt_number(round(k_theta, 4))})")
     return out
 

@@ -15,7 +15,8 @@ class ActionFailed(RuntimeError):
     """The world could not carry out an action (unknown action, unreachable grasp, IK failure)."""
 
 
-def _link(obj: ArticulatedObject, name: str) -> str:
+def link_named(obj: ArticulatedObject, name: str) -> str:
+    """The object's link called ``name`` (any case); :class:`ActionFailed` if none."""
     for lk in obj.links:
         if lk.lower() == name.lower():
             return lk
@@ -46,7 +47,7 @@ def dispatch(
         world.stop(release=True)
         return "stop and release"
     if name in ("start-increase", "start-decrease") and len(action.args) == 3:
-        hold, turn = _link(world.obj, action.args[0]), _link(world.obj, action.args[1])
+        hold, turn = link_named(world.obj, action.args[0]), link_named(world.obj, action.args[1])
         plane = _plane(action.args[2])
         direction = 1 if name == "start-increase" else -1
         speed = speeds[0] if direction > 0 else speeds[1]

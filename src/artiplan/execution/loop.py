@@ -15,13 +15,14 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
+from contextlib import suppress
 from dataclasses import asdict, replace
 from typing import TYPE_CHECKING, Any, cast
 
 from artiplan.encoding import domain_pddl, make_goal
 from artiplan.encoding.options import Model
 from artiplan.execution.config import Intervention, LoopConfig
-from artiplan.execution.dispatch import ActionFailed, dispatch
+from artiplan.execution.dispatch import ActionFailed, dispatch, link_named
 from artiplan.execution.monitor import Monitor, goal_errors
 from artiplan.execution.predict import Prediction
 from artiplan.execution.problem import build_problem, canonical
@@ -261,11 +262,11 @@ class ClosedLoop:
                                pred.at(max(now, planned))), True
         except ActionFailed as exc:
             did, ok = str(exc), False
-            names = {lk.lower(): lk for lk in self.obj.links}
-            if action.name.lower().startswith("start-") and len(action.args) == 3 \
-                    and {a.lower() for a in action.args[:2]} <= names.keys():
-                pair = (names[action.args[0].lower()], names[action.args[1].lower()])
-                self.blocked = self.blocked | {pair}
+            if action.name.lower().startswith("start-") and len(action.args) == 3:
+                with suppress(ActionFailed):  # an unknown link: nothing to block
+                    pair = (link_named(self.obj, action.args[0]),
+                            link_named(self.obj, action.args[1]))
+                    self.blocked = self.blocked | {pair}
         if ok and self.world.time > now:  # the arms approached: the rotation starts now
             shift = self.world.time - planned
             did += f" (reach {self.world.time - now:.2f} s, {shift:+.2f} s off the plan)"
