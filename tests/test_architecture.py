@@ -28,7 +28,7 @@ LAYERS = [
     "commands",
 ]
 #: Importable from anywhere.
-SHARED = {"errors"}
+SHARED = {"errors", "tolerances"}
 
 
 def _layer(module: str) -> str | None:

@@ -120,23 +120,43 @@ def test_start_stop_move_propagate_shape(model: str, sign: str) -> None:
     assert ["not", ["in-use"]] in eff and ["not", [flag, "?l2", "?p"]] in eff
     move = construct(d, ":process", f"move-{sign}")
     assert move[":precondition"] == [flag, "?l", "?p"]
-    assert move[":effect"] == [sign, ["angle", "?l", "?p"], ["*", "#t", speed]]
+    assert conjuncts(move[":effect"]) == [[sign, ["angle", "?l", "?p"], ["*", "#t", speed]]]
     prop = construct(d, ":process", f"propagate-{sign}")
     assert conjuncts(prop[":precondition"]) == [[flag, "?l1", "?p"], ["affects", "?l1", "?l2"]]
-    assert prop[":effect"] == [sign, ["angle", "?l2", "?p"], ["*", "#t", speed]]
+    assert conjuncts(prop[":effect"]) == [[sign, ["angle", "?l2", "?p"], ["*", "#t", speed]]]
 
 
 @pytest.mark.parametrize("model", ["ng", "ucm", "uacm"])
 def test_wrap_events_never_land_on_each_others_boundary(model: str) -> None:
     d = DOMAINS[model]
+    m = EncodingOptions(model).margin  # type: ignore[arg-type]
     up = construct(d, ":event", "back-to-zero")
     down = construct(d, ":event", "back-to-360")
     assert up[":precondition"] == [">=", ["angle", "?l", "?p"], "360"]
-    assert up[":effect"] == ["assign", ["angle", "?l", "?p"], "0"]
-    assert down[":precondition"] == ["<=", ["angle", "?l", "?p"], "-0.01"]
-    assert down[":effect"] == ["assign", ["angle", "?l", "?p"], "359.99"]
-    # Landing points are 0.01 from the other event's boundary: 100x VAL's slack (1e-4).
-    assert 0 - (-0.01) >= 100 * 1e-4 and 360 - 359.99 >= 100 * 1e-4 - 1e-12
+    assert conjuncts(up[":effect"]) == [["assign", ["angle", "?l", "?p"], "0"]]
+    assert down[":precondition"] == ["<=", ["angle", "?l", "?p"], f"{-m:g}"]
+    assert conjuncts(down[":effect"]) == [["assign", ["angle", "?l", "?p"], f"{360 - m:g}"]]
+    # Landing points are far from the other event's boundary: 100x VAL's slack (1e-4) at least,
+    # and more than twice VAL's event window (0.01 s) at the robot's 10 deg/s.
+    assert m >= 100 * 1e-4 and m / 10.0 >= 2 * 0.01 - 1e-12
+
+
+def test_margin_scales_with_the_robot_speed() -> None:
+    assert EncodingOptions("ng").margin == pytest.approx(0.2)
+    assert EncodingOptions("ng", speed_i=50.0).margin == pytest.approx(1.0)
+    assert EncodingOptions("ng", speed_i=0.1, speed_d=0.1).margin == pytest.approx(0.01)
+
+
+@pytest.mark.parametrize("model", ["ng", "ucm", "uacm"])
+def test_no_process_reads_a_changing_fluent(model: str) -> None:
+    """Every process starts and stops at a happening: its precondition reads facts and the
+    fluents only actions change (VAL misses a process switch between happenings)."""
+    changing = {"'angle'", "'gravity-speed'", "'reach-clock'"}
+    d = read_sexpr(domain_pddl(None, EncodingOptions(model, reach_time=1.0)))  # type: ignore[arg-type]
+    for part in sections(d)[":process"]:
+        fields = {str(part[i]): part[i + 1] for i in range(2, len(part), 2)}
+        pre = str(fields[":precondition"])
+        assert not any(f"[{name}" in pre for name in changing), (part[1], pre)
 
 
 @pytest.mark.parametrize("model", ["ng", "ucm", "uacm"])
@@ -159,43 +179,52 @@ def test_ng_has_no_gravity() -> None:
     assert not any("gravity" in n for n in names(d, ":process") | names(d, ":event"))
 
 
-def test_ucm_gravity_processes() -> None:
-    d = DOMAINS["ucm"]
-    assert {"gravity-increase", "gravity-decrease"} <= names(d, ":process")
-    assert {"propagate-gravity-increase", "propagate-gravity-decrease"} <= names(d, ":process")
-    inc = construct(d, ":process", "gravity-increase")
-    assert inc[":effect"] == ["increase", ["angle", "?l", "z-axis"], ["*", "#t", ["speed-g"]]]
-    pre = conjuncts(inc[":precondition"])
-    assert [">", ["angle", "?l", "z-axis"], "180"] in pre
-    assert ["<", ["angle", "?l", "z-axis"], "360"] in pre
-    dec = conjuncts(construct(d, ":process", "gravity-decrease")[":precondition"])
-    assert [">", ["angle", "?l", "z-axis"], "0"] in dec  # stops exactly at rest
-    assert ["<", ["angle", "?l", "z-axis"], "180"] in dec  # exactly 180 stays
-    prop = construct(d, ":process", "propagate-gravity-decrease")
-    assert ["affects", "?l1", "?l2"] in conjuncts(prop[":precondition"])
-    assert prop[":effect"][1] == ["angle", "?l2", "z-axis"]
-
-
-def test_uacm_speed_starts_at_zero_grows_with_acceleration_and_resets() -> None:
-    d = DOMAINS["uacm"]
-    acc = construct(d, ":process", "gravity-accelerate")
-    assert acc[":effect"] == ["increase", ["gravity-speed", "?l"], ["*", "#t", ["acceleration"]]]
-    fall = construct(d, ":process", "gravity-decrease")
-    assert fall[":effect"] == [
-        "decrease",
-        ["angle", "?l", "z-axis"],
-        ["*", "#t", ["gravity-speed", "?l"]],
-    ]
+@pytest.mark.parametrize("model", ["ucm", "uacm"])
+def test_gravity_processes_start_and_stop_at_happenings(model: str) -> None:
+    """No process reads a changing angle: flags set by angle events, "feels gravity" changed
+    only by actions (VAL loses process switches between happenings, see semantics.md)."""
+    d = DOMAINS[model]
+    rate = ["speed-g"] if model == "ucm" else ["gravity-speed", "?l"]
     for sign in ("increase", "decrease"):
         flag = f"{sign[:-1]}ing-angle-gravity"
+        fall = construct(d, ":process", f"gravity-{sign}")
+        assert conjuncts(fall[":effect"]) == [[sign, ["angle", "?l", "z-axis"], ["*", "#t", rate]]]
+        pre = conjuncts(fall[":precondition"])
+        assert [flag, "?l"] in pre and "['angle'" not in str(pre)
+        prop = construct(d, ":process", f"propagate-gravity-{sign}")
+        assert ["affects", "?l1", "?l2"] in conjuncts(prop[":precondition"])
+        assert conjuncts(prop[":effect"])[0][1] == ["angle", "?l2", "z-axis"]
         start = construct(d, ":event", f"start-gravity-{sign}")
         stop = construct(d, ":event", f"stop-gravity-{sign}")
         # Self-falsifying: the flag is in the precondition and flipped by the effect.
         assert ["not", [flag, "?l"]] in conjuncts(start[":precondition"])
         assert [flag, "?l"] in conjuncts(start[":effect"])
         assert [flag, "?l"] in conjuncts(stop[":precondition"])
-        eff = conjuncts(stop[":effect"])
-        assert ["not", [flag, "?l"]] in eff and ["assign", ["gravity-speed", "?l"], "0"] in eff
+        assert ["not", [flag, "?l"]] in conjuncts(stop[":effect"])
+        # The events read the angle only: no action can trigger them.
+        assert "held-index" not in str(start) + str(stop)
+    dec = conjuncts(construct(d, ":event", "start-gravity-decrease")[":precondition"])
+    assert [">", ["angle", "?l", "z-axis"], "0.2"] in dec  # at rest within the margin: stays
+    assert ["<", ["angle", "?l", "z-axis"], "179.8"] in dec  # near 180: stays
+
+
+def test_uacm_speed_starts_at_zero_grows_with_acceleration_and_resets() -> None:
+    d = DOMAINS["uacm"]
+    acc = construct(d, ":process", "gravity-accelerate")
+    assert conjuncts(acc[":effect"]) == [
+        ["increase", ["gravity-speed", "?l"], ["*", "#t", ["acceleration"]]]
+    ]
+    for sign in ("increase", "decrease"):
+        for kind in ("start", "stop"):
+            eff = conjuncts(construct(d, ":event", f"{kind}-gravity-{sign}")[":effect"])
+            assert ["assign", ["gravity-speed", "?l"], "0"] in eff
+        # A grasp resets the speeds of every link the rotated link does not carry.
+        start = conjuncts(construct(d, ":action", f"start-{sign}")[":effect"])
+        assert [
+            "forall",
+            ["?l", "-", "link"],
+            ["when", ["not", ["affects", "?l2", "?l"]], ["assign", ["gravity-speed", "?l"], "0"]],
+        ] in start
 
 
 def _problem(model: str, n: int = 4, **kw: float) -> SExpr:

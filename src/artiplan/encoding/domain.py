@@ -29,8 +29,8 @@ from artiplan.encoding.goals import fmt_number
 from artiplan.encoding.options import EncodingOptions
 from artiplan.model import ArticulatedObject
 
-#: Margin [deg] of the wrap-around below 0 and of UACM's start/stop hysteresis. It must exceed
-#: twice VAL's comparison slack (1e-4) by far, and be negligible next to a goal tolerance.
+#: Smallest margin [deg] of the wrap-around below 0 and of the gravity flags' hysteresis (the
+#: margin used is ``EncodingOptions.margin``, which also scales with the robot's speed).
 WRAP_MARGIN = 0.01
 
 
@@ -56,6 +56,7 @@ def _header(options: EncodingOptions) -> str:
         functions.append("(speed-g)")
     if options.model == "uacm":
         functions += ["(acceleration)", "(gravity-speed ?l - link)"]
+    if options.has_gravity:
         predicates += [
             "(increasing-angle-gravity ?l - link)",
             "(decreasing-angle-gravity ?l - link)",
@@ -71,7 +72,7 @@ def _header(options: EncodingOptions) -> str:
     func_text = "\n    ".join(functions)
     return f"""(define (domain {domain_name(options)})
   (:requirements :strips :typing :negative-preconditions :disjunctive-preconditions
-    :fluents :time)
+    :fluents :time{" :conditional-effects" if options.model == "uacm" else ""})
   (:types link plane)
   (:constants {planes} - plane)
   (:predicates
@@ -86,6 +87,14 @@ def _robot(options: EncodingOptions, sign: str) -> str:
     flag = f"{sign}ing-angle-robot".replace("eing", "ing")
     speed = "(speed-i)" if sign == "increase" else "(speed-d)"
     held_start = "\n      (assign (held-index) (link-index ?l2))" if options.has_gravity else ""
+    if options.model == "uacm":
+        # A grasp stops the falls of ?l2 and every link base-ward of it (those ?l2 does not
+        # carry): their speeds restart from 0. An action effect, not an event (see the gravity
+        # flags); a fact condition, because ENHSP fails on numeric conditions in `when`.
+        held_start += """
+      (forall (?l - link)
+        (when (not (affects ?l2 ?l))
+          (assign (gravity-speed ?l) 0)))"""
     held_stop = "\n      (assign (held-index) 1)" if options.has_gravity else ""
     timed = options.reach_time is not None
     ready = "\n      (not (reaching))" if timed else ""
@@ -120,7 +129,7 @@ def _robot(options: EncodingOptions, sign: str) -> str:
   (:process move-{sign}
     :parameters (?l - link ?p - plane)
     :precondition ({flag} ?l ?p)
-    :effect ({sign} (angle ?l ?p) (* #t {speed})))
+    :effect (and ({sign} (angle ?l ?p) (* #t {speed}))))
 
   ;; The rotation carries every link tip-ward of ?l1 (absolute angles move together).
   (:process propagate-{sign}
@@ -128,7 +137,7 @@ def _robot(options: EncodingOptions, sign: str) -> str:
     :precondition (and
       ({flag} ?l1 ?p)
       (affects ?l1 ?l2))
-    :effect ({sign} (angle ?l2 ?p) (* #t {carried})))
+    :effect (and ({sign} (angle ?l2 ?p) (* #t {carried}))))
 {azimuth}"""
 
 
@@ -146,7 +155,7 @@ def _azimuth(options: EncodingOptions, name: str, when: str, sign: str, rate: st
     :parameters (?l1 - link ?l2 - link)
     :precondition (and
       {when})
-    :effect ({sign} (angle ?l2 {h}) (* #t (* {rate} (carry-theta ?l1 ?l2)))))
+    :effect (and ({sign} (angle ?l2 {h}) (* #t (* {rate} (carry-theta ?l1 ?l2))))))
 """
 
 def _carried(options: EncodingOptions, rate: str, plane: str) -> str:
@@ -156,20 +165,21 @@ def _carried(options: EncodingOptions, rate: str, plane: str) -> str:
     return rate
 
 
-def _wrap_events() -> str:
-    m = fmt_number(WRAP_MARGIN)
+def _wrap_events(options: EncodingOptions) -> str:
+    m = fmt_number(options.margin)
     return f"""
   ;; DEPARTURE (VAL): wrap below 0 only at -{m} and land on 360 - {m}, so that no wrap lands
-  ;; within VAL's comparison slack of the other's boundary (no bouncing). Angles: [-{m}, 360).
+  ;; within VAL's comparison slack of the other's boundary (no bouncing), and no two events of
+  ;; a motion fall within VAL's event window of each other. Angles: [-{m}, 360).
   (:event back-to-zero
     :parameters (?l - link ?p - plane)
     :precondition (>= (angle ?l ?p) 360)
-    :effect (assign (angle ?l ?p) 0))
+    :effect (and (assign (angle ?l ?p) 0)))
 
   (:event back-to-360
     :parameters (?l - link ?p - plane)
     :precondition (<= (angle ?l ?p) -{m})
-    :effect (assign (angle ?l ?p) {fmt_number(360 - WRAP_MARGIN)}))
+    :effect (and (assign (angle ?l ?p) {fmt_number(360 - options.margin)})))
 """
 
 
@@ -178,84 +188,59 @@ def _feels(var: str) -> str:
     return f"(> (link-index {var}) (+ (held-index) 0.5))"
 
 
-def _ucm(options: EncodingOptions) -> str:
-    g = options.gravity_plane
-    blocks = []
-    for sign, lo, hi in (("decrease", "0", "180"), ("increase", "180", "360")):
-        rng = f"(> (angle ?l {g}) {lo})\n      (< (angle ?l {g}) {hi})"
-        rng1 = rng.replace("?l ", "?l1 ")
-        azimuth = _azimuth(options, f"propagate-gravity-{sign}-azimuth",
-                           f"(affects ?l1 ?l2)\n      {_feels('?l1')}\n      {rng1}", sign,
-                           "(speed-g)")
-        blocks.append(f"""
-  ;; Gravity pulls ?l toward rest (0 == 360) at constant speed; it stops at rest, and exactly
-  ;; 180 stays. DEPARTURE (VAL): "feels gravity" is derived from the state, no Boolean effect.
-  (:process gravity-{sign}
-    :parameters (?l - link)
-    :precondition (and
-      {_feels("?l")}
-      {rng})
-    :effect ({sign} (angle ?l {g}) (* #t (speed-g))))
-
-  (:process propagate-gravity-{sign}
-    :parameters (?l1 - link ?l2 - link)
-    :precondition (and
-      (affects ?l1 ?l2)
-      {_feels("?l1")}
-      {rng1})
-    :effect ({sign} (angle ?l2 {g}) (* #t {_carried(options, "(speed-g)", g)})))
-{azimuth}""")
-    return "".join(blocks)
-
-
-def _uacm_events(options: EncodingOptions, sign: str) -> str:
+def _gravity(options: EncodingOptions, sign: str) -> str:
+    """Gravity on one side of the vertical (``decrease``: (0, 180), ``increase``: (180, 360)),
+    switched by flag events; UCM moves at ``(speed-g)``, UACM at ``(gravity-speed ?l)``."""
     g = options.gravity_plane
     flag = f"{sign}ing-angle-gravity".replace("eing", "ing")
     other = "increasing-angle-gravity" if sign == "decrease" else "decreasing-angle-gravity"
-    m = fmt_number(WRAP_MARGIN)
+    m = fmt_number(options.margin)
+    uacm = options.model == "uacm"
+    rate = "(gravity-speed ?l)" if uacm else "(speed-g)"
+    rate1 = rate.replace("?l)", "?l1)")
+    reset = "\n      (assign (gravity-speed ?l) 0)" if uacm else ""
     azimuth = _azimuth(options, f"propagate-gravity-{sign}-azimuth",
-                       f"(affects ?l1 ?l2)\n      ({flag} ?l1)\n      {_feels('?l1')}", sign,
-                       "(gravity-speed ?l1)")
+                       f"(affects ?l1 ?l2)\n      ({flag} ?l1)\n      {_feels('?l1')}", sign, rate1)
     if sign == "decrease":
-        below = fmt_number(180 - WRAP_MARGIN)
+        below = fmt_number(180 - options.margin)
         start_range = f"(> (angle ?l {g}) {m})\n      (< (angle ?l {g}) {below})"
-        stop_range = f"(<= (angle ?l {g}) 0)\n        (>= (angle ?l {g}) 180)"
+        stop_range = f"(or\n        (<= (angle ?l {g}) 0)\n        (>= (angle ?l {g}) 180))"
     else:
         # The upper end needs no test: at 360 back-to-zero wraps the angle to 0 (<= 180).
-        start_range = f"(> (angle ?l {g}) {fmt_number(180 + WRAP_MARGIN)})"
+        start_range = f"(> (angle ?l {g}) {fmt_number(180 + options.margin)})"
         stop_range = f"(<= (angle ?l {g}) 180)"
     return f"""
-  ;; DEPARTURE (VAL): events with Boolean flags switch gravity on and off (self-falsifying
-  ;; under VAL's slack); start and stop thresholds are {m} deg apart (no bouncing).
+  ;; DEPARTURE (VAL): events with Boolean flags record which way gravity would turn ?l
+  ;; (self-falsifying under VAL's slack; start and stop thresholds {m} deg apart, so they
+  ;; never bounce). They read only ?l's angle: no action triggers them, and no process reads
+  ;; a changing angle, so every process starts and stops at a happening (benchmarks/results/
+  ;; semantics.md: what VAL does otherwise). L1 (index 1) is clamped: never flagged.
   (:event start-gravity-{sign}
     :parameters (?l - link)
     :precondition (and
       (not ({flag} ?l))
       (not ({other} ?l))
-      {_feels("?l")}
+      (> (link-index ?l) 1.5)
       {start_range})
     :effect (and
-      ({flag} ?l)
-      (assign (gravity-speed ?l) 0)))
+      ({flag} ?l){reset}))
 
-  ;; Rest reached, or ?l or a link tip-ward of it grasped: the speed resets to 0.
+  ;; Rest reached (or the vertical passed).
   (:event stop-gravity-{sign}
     :parameters (?l - link)
     :precondition (and
       ({flag} ?l)
-      (or
-        (<= (link-index ?l) (+ (held-index) 0.5))
-        {stop_range}))
+      {stop_range})
     :effect (and
-      (not ({flag} ?l))
-      (assign (gravity-speed ?l) 0)))
+      (not ({flag} ?l)){reset}))
 
+  ;; Gravity turns ?l toward rest (0 == 360); exactly 180 stays.
   (:process gravity-{sign}
     :parameters (?l - link)
     :precondition (and
       ({flag} ?l)
       {_feels("?l")})
-    :effect ({sign} (angle ?l {g}) (* #t (gravity-speed ?l))))
+    :effect (and ({sign} (angle ?l {g}) (* #t {rate}))))
 
   (:process propagate-gravity-{sign}
     :parameters (?l1 - link ?l2 - link)
@@ -263,21 +248,19 @@ def _uacm_events(options: EncodingOptions, sign: str) -> str:
       (affects ?l1 ?l2)
       ({flag} ?l1)
       {_feels("?l1")})
-    :effect ({sign} (angle ?l2 {g}) (* #t {_carried(options, "(gravity-speed ?l1)", g)})))
+    :effect (and ({sign} (angle ?l2 {g}) (* #t {_carried(options, rate1, g)}))))
 {azimuth}"""
 
 
-def _uacm(options: EncodingOptions) -> str:
-    accelerate = f"""
+_ACCELERATE = f"""
   ;; The speed of a falling link grows at the problem's (acceleration) [deg/s^2].
   (:process gravity-accelerate
     :parameters (?l - link)
     :precondition (and
       (or (decreasing-angle-gravity ?l) (increasing-angle-gravity ?l))
       {_feels("?l")})
-    :effect (increase (gravity-speed ?l) (* #t (acceleration))))
+    :effect (and (increase (gravity-speed ?l) (* #t (acceleration)))))
 """
-    return _uacm_events(options, "decrease") + _uacm_events(options, "increase") + accelerate
 
 
 def _reach() -> str:
@@ -286,14 +269,14 @@ def _reach() -> str:
   (:process reach
     :parameters ()
     :precondition (reaching)
-    :effect (increase (reach-clock) (* #t 1)))
+    :effect (and (increase (reach-clock) (* #t 1))))
 
   (:event hands-ready
     :parameters ()
     :precondition (and
       (reaching)
       (>= (reach-clock) (reach-time)))
-    :effect (not (reaching)))
+    :effect (and (not (reaching))))
 """
 
 
@@ -320,11 +303,11 @@ def domain_pddl(obj: ArticulatedObject | None, options: EncodingOptions) -> str:
     """
     del obj  # the domain does not depend on the object
     parts = [_header(options), _robot(options, "increase"), _robot(options, "decrease")]
-    parts.append(_wrap_events())
-    if options.model == "ucm":
-        parts.append(_ucm(options))
-    elif options.model == "uacm":
-        parts.append(_uacm(options))
+    parts.append(_wrap_events(options))
+    if options.has_gravity:
+        parts += [_gravity(options, "decrease"), _gravity(options, "increase")]
+    if options.model == "uacm":
+        parts.append(_ACCELERATE)
     if options.reach_time is not None:
         parts.append(_reach())
     parts.append(_OBSERVE)

@@ -9,6 +9,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 
 from artiplan.model import ArticulatedObject
+from artiplan.tolerances import VAL_SLACK
 
 
 def gravity_links(obj: ArticulatedObject, held: Iterable[str] = ()) -> tuple[str, ...]:
@@ -27,3 +28,19 @@ def gravity_links(obj: ArticulatedObject, held: Iterable[str] = ()) -> tuple[str
     held_indices = [obj.index(lk) for lk in held]
     outermost = max(held_indices, default=1)
     return tuple(lk for lk in obj.links if obj.index(lk) > max(outermost, 1))
+
+
+def initial_gravity(gamma: float, margin: float) -> str | None:
+    """Which way gravity turns a free link whose vertical angle is ``gamma`` [deg, in
+    [0, 360)] at the start: ``"decreasing"``, ``"increasing"`` or None (at rest, or within the
+    hysteresis ``margin`` [deg] of 0 or 180: ``EncodingOptions.margin``).
+
+    The rule is the ``start-gravity-*`` events' preconditions read as VAL reads them (slack
+    ``VAL_SLACK``): a link that VAL would see start falling starts with its flag set.
+    """
+    m = margin
+    if m - VAL_SLACK < gamma < 180 - m + VAL_SLACK:
+        return "decreasing"
+    if gamma > 180 + m - VAL_SLACK:
+        return "increasing"
+    return None

@@ -6,6 +6,10 @@ from dataclasses import dataclass
 from typing import Literal
 
 from artiplan.model import HORIZONTAL_PLANE, PLANES, VERTICAL_PLANE
+from artiplan.tolerances import VAL_EVENT_WINDOW
+
+#: Smallest wrap-around and hysteresis margin [deg]: 100 times VAL's comparison slack.
+MIN_MARGIN = 0.01
 
 Model = Literal["ng", "ucm", "uacm"]
 MODELS: tuple[str, ...] = ("ng", "ucm", "uacm")
@@ -70,6 +74,19 @@ class EncodingOptions:
     def has_gravity(self) -> bool:
         """True for UCM and UACM."""
         return self.model != "ng"
+
+    @property
+    def margin(self) -> float:
+        """Margin [deg] of the wrap-around (angles live in [-margin, 360)) and of the gravity
+        flags' hysteresis (a link within it of 0 or 180 does not start to fall).
+
+        Two events of one motion (180 passed, then 180 + margin; 0 passed, then -margin) must
+        be more than VAL's event window apart in time, or VAL merges them into one happening
+        and reports an event triggered twice: twice the window at the fastest robot speed,
+        and at least :data:`MIN_MARGIN` (0.2 deg at the default 10 deg/s).
+        """
+        fastest = max(self.speed_i, self.speed_d)
+        return max(MIN_MARGIN, round(2.0 * VAL_EVENT_WINDOW * fastest, 6))
 
     @property
     def azimuth_plane(self) -> str | None:

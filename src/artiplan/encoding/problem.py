@@ -6,6 +6,7 @@ import math
 
 from artiplan.encoding.domain import domain_name
 from artiplan.encoding.goals import GoalSpec, fmt_number, make_goal
+from artiplan.encoding.gravity import initial_gravity
 from artiplan.encoding.options import EncodingOptions
 from artiplan.model import ArticulatedObject, Configuration
 from artiplan.model.angles import wrap_deg
@@ -29,6 +30,8 @@ def _init_facts(obj: ArticulatedObject, init: Configuration, options: EncodingOp
         facts += [f"(= (link-index {lk}) {obj.index(lk)})" for lk in obj.links]
     if options.model == "uacm":
         facts += [f"(= (gravity-speed {lk}) 0)" for lk in obj.links]
+    if options.has_gravity:
+        facts += _gravity_flags(obj, init, options)
     if options.reach_time is not None:
         facts += [f"(= (reach-time) {fmt_number(options.reach_time)})", "(= (reach-clock) 0)"]
     if options.carry == "projected":
@@ -38,6 +41,21 @@ def _init_facts(obj: ArticulatedObject, init: Configuration, options: EncodingOp
             value = wrap_deg(init.angle(obj.index(lk), p))
             facts.append(f"(= (angle {lk} {p}) {fmt_number(value)})")
     return facts
+
+
+def _gravity_flags(
+    obj: ArticulatedObject, init: Configuration, options: EncodingOptions
+) -> list[str]:
+    """The gravity flags the initial state implies, so that no ``start-gravity-*`` event is
+    enabled at time 0 (VAL refuses a problem whose initial state enables an event). With the
+    hands free every link but the base feels gravity; see :func:`initial_gravity`."""
+    out = []
+    for lk in obj.links[1:]:
+        angle = float(fmt_number(wrap_deg(init.angle(obj.index(lk), options.gravity_plane))))
+        side = initial_gravity(angle, options.margin)
+        if side is not None:
+            out.append(f"({side}-angle-gravity {lk})")
+    return out
 
 
 #: Below this angle from the vertical [deg] (either way) a carried link's azimuth is too

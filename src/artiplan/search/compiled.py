@@ -34,6 +34,7 @@ from artiplan.pddl.task import (
     Truth,
 )
 from artiplan.semantics.expressions import expr_source as semantics_expr_source
+from artiplan.tolerances import VAL_SLACK
 
 CondFn = Callable[[int, tuple[float, ...]], bool]
 EffectFn = Callable[[int, tuple[float, ...]], tuple[int, tuple[float, ...]]]
@@ -110,7 +111,7 @@ class Slack:
 
 
 #: VAL's reading: goal, action and event preconditions (``semantics.VAL_TOLERANCES``)
-VAL_SLACK = Slack(1e-4, 1e-9)
+VAL_READING = Slack(VAL_SLACK, VAL_SLACK)
 #: exact up to rounding: process preconditions (``semantics`` settles flows this way)
 SNAP_SLACK = Slack(-1e-9, 1e-9)
 
@@ -138,7 +139,7 @@ class ComparisonTable:
 
 
 def condition_source(
-    cond: Condition, comps: ComparisonTable, used: set[int], slack: Slack = VAL_SLACK
+    cond: Condition, comps: ComparisonTable, used: set[int], slack: Slack = VAL_READING
 ) -> str:
     """Python source of a condition over ``F`` (fact mask) and ``V``; records comparisons."""
     if isinstance(cond, Truth):
@@ -161,7 +162,7 @@ def condition_source(
 
 
 def compile_condition(
-    cond: Condition, comps: ComparisonTable, slack: Slack = VAL_SLACK
+    cond: Condition, comps: ComparisonTable, slack: Slack = VAL_READING
 ) -> tuple[CondFn, frozenset[int]]:
     """A condition as a function ``(F, V) -> bool`` plus the comparisons it reads."""
     used: set[int] = set()

@@ -37,6 +37,7 @@ from artiplan.pddl.task import (
     Truth,
 )
 from artiplan.semantics.state import State
+from artiplan.tolerances import VAL_SLACK
 
 ExprFn = Callable[[Sequence[float]], float]
 CondFn = Callable[[Collection[int], Sequence[float]], bool]
@@ -51,8 +52,8 @@ class Tolerances:
 
 
 EXACT = Tolerances()
-#: VAL's reading (stack.md): slack 1e-4 on strict comparisons, 1e-9 rounding on the others.
-VAL_TOLERANCES = Tolerances(strict_slack=1e-4, eps=1e-9)
+#: VAL's reading (measured, :mod:`artiplan.tolerances`): slack 1e-4 on every comparison.
+VAL_TOLERANCES = Tolerances(strict_slack=VAL_SLACK, eps=VAL_SLACK)
 
 
 # ------------------------------------------------------------------------------ tree walking
