@@ -125,7 +125,8 @@ def test_non_polynomial_dynamics_use_a_counted_fallback() -> None:
     assert result.status is PlanStatus.SOLVED, result.message
     assert result.stats["fallback_steps"] > 0
     assert result.plan is not None
-    assert result.plan.makespan == pytest.approx(math.log(5.0), abs=1e-3)
+    # the goal wait runs on for the goal margin (0.01 s) while the goal keeps holding
+    assert math.log(5.0) - 1e-3 <= result.plan.makespan <= math.log(5.0) + 0.01 + 1e-3
 
 
 def test_memory_limit_is_detected() -> None:

@@ -63,6 +63,11 @@ def grid_after(t: float, grid: float) -> float:
     return round(math.ceil((t + grid) / grid - 1e-6) * grid, 9)
 
 
+def ceil_grid(t: float, grid: float) -> float:
+    """The first grid time at or after ``t`` [s]."""
+    return round(math.ceil(t / grid - 1e-6) * grid, 9)
+
+
 @dataclass
 class Dynamics:
     """The search's simulator over a compiled task, with caches and counters."""

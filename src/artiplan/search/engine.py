@@ -21,12 +21,21 @@ from __future__ import annotations
 
 import heapq
 import itertools
+import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from artiplan.search.compiled import CompiledTask
-from artiplan.search.dynamics import Dynamics, EventLog, Values, ZenoError, grid_after
+from artiplan.search.dynamics import (
+    Dynamics,
+    EventLog,
+    Values,
+    ZenoError,
+    ceil_grid,
+    grid_after,
+)
 from artiplan.search.heuristic import Evaluation, RateHeuristic
+from artiplan.tolerances import VAL_EVENT_WINDOW
 
 Op = tuple
 
@@ -38,9 +47,15 @@ class SearchConfig:
     Attributes:
         epsilon: Separation [s] between successive actions (> VAL's tolerance 0.001).
         value_precision: Values are rounded to this many decimals for duplicate detection.
-        goal_margin: Extra time [s] a goal-group wait runs on, while the group keeps holding.
+        goal_margin: Extra time [s] a goal wait runs on, while the goal (group) keeps holding,
+            so the plan's last happening sees the goal with a margin.
         boost: Pops from the preferred list after each improvement of the best value.
         max_wait_steps: Critical times one macro wait may cross.
+        event_gap: No action closer than this [s] to an event, before or after it (VAL fires
+            an event due within its event window after a happening at that happening, and
+            then loses the processes the action starts: benchmarks/results/semantics.md).
+            An action due sooner after an event waits; one that an event would follow too
+            soon is not applied. 0 turns the rule off.
     """
 
     epsilon: float = 0.001
@@ -48,6 +63,7 @@ class SearchConfig:
     goal_margin: float = 0.01
     boost: int = 1000
     max_wait_steps: int = 64
+    event_gap: float = 1.5 * VAL_EVENT_WINDOW
 
 
 @dataclass
@@ -65,6 +81,7 @@ class Node:
     active: tuple[int, ...] = ()  # processes running from ``time`` on
     after: int = 0  # events[after:] were triggered by the node's action
     n_actions: int = 0  # actions on the path from the initial node
+    last_event: float = -math.inf  # time of the latest event on the path [s]
 
 
 @dataclass
@@ -97,7 +114,7 @@ class Search:
         self.counter = itertools.count()
         self.stats: dict[str, float] = dict.fromkeys(
             ("expanded", "generated", "evaluated", "duplicates", "undo_pruned", "invalid",
-             "rejected", "pruned"), 0)
+             "rejected", "pruned", "gap_pruned"), 0)
 
     # ------------------------------------------------------------------ successors
     def _key(self, node: Node) -> tuple[int, tuple[int, ...], tuple[float | None, ...]]:
@@ -117,11 +134,10 @@ class Search:
         log: EventLog = []
         dyn = self.dyn
         if op[0] == "a":
-            t = max(parent.time, parent.ready)
-            facts, values, _ = dyn.advance(
-                parent.time, parent.facts, parent.values, t, log, parent.active)
-            # a happening: events of that instant first, then the action (the validator's order)
-            facts, values, _ = dyn.settle(t, facts, values, log)
+            at = self._happening(parent, log)
+            if at is None:
+                return None
+            t, facts, values, _ = at
             act = self.ct.actions[op[1]]
             if facts & act.forb or not act.pre(facts, values):
                 return None
@@ -132,40 +148,84 @@ class Search:
                 # undoes the previous action after only epsilon: pointless (documented pruning)
                 self.stats["undo_pruned"] += 1
                 return None
+            if self._event_follows(t, values, active):
+                return None
             ready = round(t + self.config.epsilon, 9)
             return Node(t, facts, values, ready, pi, op, log, True, active, after,
-                        parent.n_actions + 1)
+                        parent.n_actions + 1, last_event_after(parent, log))
         if op[0] == "w":
             res = dyn.wait_next(parent.time, parent.facts, parent.values, log, parent.active)
         else:
             if op[0] == "u":
                 g = self.h.groups[op[1]]
                 fn, comps = g.fn, g.comps
-            else:  # the plan ends there: no margin needed
+            else:
                 fn, comps = self.ct.goal, self.ct.goal_comps
-            margin = self.config.goal_margin if op[0] == "u" else 0.0
             res = dyn.wait_until(parent.time, parent.facts, parent.values, fn, comps, log,
-                                 parent.active, self.config.max_wait_steps, margin)
+                                 parent.active, self.config.max_wait_steps,
+                                 self.config.goal_margin)
         if res is None:
             return None
         t, facts, values, active = res
         return Node(t, facts, values, parent.ready, pi, op, log, False, active,
-                    n_actions=parent.n_actions)
+                    n_actions=parent.n_actions, last_event=last_event_after(parent, log))
+
+    def _happening(
+        self, node: Node, log: EventLog
+    ) -> tuple[float, int, Values, tuple[int, ...]] | None:
+        """The earliest time [s] at which an action may follow ``node`` (``epsilon`` after the
+        previous action, ``event_gap`` after every event), with the settled state and active
+        processes there; the events on the way are appended to ``log``. None if events keep
+        coming closer than ``event_gap``."""
+        dyn, gap = self.dyn, self.config.event_gap
+        t0, facts, values, active = node.time, node.facts, node.values, node.active
+        t = max(node.time, node.ready)
+        if node.last_event + gap > t:
+            t = ceil_grid(node.last_event + gap, dyn.config.grid)
+        for _ in range(16):
+            facts, values, _ = dyn.advance(t0, facts, values, t, log, active)
+            # a happening: events of that instant first, then the action (the validator's order)
+            facts, values, active = dyn.settle(t, facts, values, log)
+            latest = log[-1][0] if log else -math.inf
+            if latest <= t - gap + 1e-9:
+                return t, facts, values, active
+            t0, t = t, ceil_grid(latest + gap, dyn.config.grid)
+        return None
+
+    def _event_follows(self, t: float, values: Values, active: tuple[int, ...]) -> bool:
+        """True when an event (or a process switch) would follow a happening at ``t`` within
+        ``event_gap`` (counted as ``gap_pruned``)."""
+        gap = self.config.event_gap
+        if gap <= 0.0:
+            return False
+        flow = self.dyn.flow_of(active, values)
+        if not flow.moving:
+            return False
+        dt = self.dyn.next_change(values, flow, self.dyn.comps_for(flow, "dynamic"), gap)
+        if dt is None:
+            return False
+        self.stats["gap_pruned"] += 1
+        return True
 
     def closing(self, node: Node) -> tuple[float, int] | None | bool:
-        """How a goal node ends the plan: True if its action does, (time, no-op) or None."""
-        if node.by_action or node.parent < 0:
+        """How a goal node ends the plan: True if its action does, (time, no-op) or None.
+
+        The no-op keeps ``event_gap`` from every event, as actions do; the goal must hold
+        there."""
+        if (node.by_action or node.parent < 0) and node.last_event <= node.time - \
+                self.config.event_gap:
             return True
-        t = max(node.time, node.ready)
         trial: EventLog = []
         try:
-            facts, values, _ = self.dyn.advance(
-                node.time, node.facts, node.values, t, trial, node.active)
-            # the closing action is a happening: the validator settles the state there
-            facts, values, _ = self.dyn.settle(t, facts, values, trial)
+            at = self._happening(node, trial)
         except ZenoError:
             return None
+        if at is None:
+            return None
+        t, facts, values, active = at
         if not self.ct.goal(facts, values):
+            return None
+        if self._event_follows(t, values, active):
             return None
         for i in self.noops:
             if self.ct.actions[i].pre(facts, values):
@@ -255,7 +315,14 @@ def initial_node(ct: CompiledTask, dyn: Dynamics) -> Node:
     """The initial state after the events it triggers at time 0."""
     log: EventLog = []
     facts, values, active = dyn.settle(0.0, ct.init_facts, ct.init_values, log)
-    return Node(0.0, facts, values, 0.0, -1, ("init",), log, False, active)
+    return Node(0.0, facts, values, 0.0, -1, ("init",), log, False, active,
+                last_event=log[-1][0] if log else -math.inf)
 
 
-__all__ = ["Node", "Search", "SearchConfig", "SearchOutcome", "grid_after", "initial_node"]
+def last_event_after(parent: Node, log: EventLog) -> float:
+    """The latest event time on the path through ``parent`` and then ``log`` [s]."""
+    return max(parent.last_event, log[-1][0]) if log else parent.last_event
+
+
+__all__ = ["Node", "Search", "SearchConfig", "SearchOutcome", "grid_after", "initial_node",
+           "last_event_after"]

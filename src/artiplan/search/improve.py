@@ -17,7 +17,14 @@ from typing import Any
 
 from artiplan.search.compiled import CompiledTask
 from artiplan.search.dynamics import Dynamics, EventLog, ZenoError
-from artiplan.search.engine import Node, Search, SearchConfig, SearchOutcome, initial_node
+from artiplan.search.engine import (
+    Node,
+    Search,
+    SearchConfig,
+    SearchOutcome,
+    initial_node,
+    last_event_after,
+)
 from artiplan.search.heuristic import HeuristicConfig, RateHeuristic
 from artiplan.search.limits import LimitReached, Limits
 from artiplan.semantics.plan import Plan
@@ -146,14 +153,15 @@ def _probe(search: Search, horizon: Callable[[], float]) -> int:
         try:
             res = dyn.wait_until(child.time, child.facts, child.values, ct.goal, ct.goal_comps,
                                  log, child.active, search.config.max_wait_steps,
-                                 horizon=horizon())
+                                 search.config.goal_margin, horizon=horizon())
         except ZenoError:
             continue
         if res is None:
             continue
         t, facts, values, active = res
         search.nodes.append(Node(t, facts, values, child.ready, len(search.nodes) - 1, ("g",),
-                                 log, False, active, n_actions=child.n_actions))
+                                 log, False, active, n_actions=child.n_actions,
+                                 last_event=last_event_after(child, log)))
         closing = search.closing(search.nodes[-1])
         if closing is not None:
             search.accept(SearchOutcome(len(search.nodes) - 1, search.nodes,
