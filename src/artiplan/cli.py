@@ -10,7 +10,9 @@ from __future__ import annotations
 
 import argparse
 import importlib
+import os
 import sys
+import time
 import traceback
 from collections.abc import Sequence
 
@@ -33,6 +35,21 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "demo": ("demo", "the main job on built-in defaults"),
     "fidelity": ("fidelity", "measure each gravity model's prediction error against physics"),
 }
+
+#: Commands that end the process at once when done (their time limit is the process's).
+QUICK_EXIT = frozenset({"plan"})
+
+def process_start() -> float:
+    """When this process started [s since the epoch] (Linux /proc; else: now)."""
+    try:
+        with open("/proc/self/stat") as fh:
+            start_ticks = int(fh.read().rsplit(")", 1)[1].split()[19])
+        with open("/proc/uptime") as fh:
+            uptime = float(fh.read().split()[0])
+        return time.time() - max(0.0, uptime - start_ticks / os.sysconf("SC_CLK_TCK"))
+    except (OSError, ValueError, IndexError):
+        return time.time()
+
 
 REPORT_URL = "the project's issue tracker (include the command line and the traceback above)"
 
@@ -61,7 +78,11 @@ def _load(name: str) -> object | None:
 
 
 def main(argv: Sequence[str] | None = None) -> int:
-    """Run the command line; returns the exit code (also used by ``python -m artiplan``)."""
+    """Run the command line; returns the exit code (also used by ``python -m artiplan``).
+
+    Called as the process's entry point (``argv`` None), ``plan`` ends the process itself
+    once its output is flushed (see ``QUICK_EXIT``)."""
+    argv_is_process = argv is None
     argv = list(sys.argv[1:] if argv is None else argv)
     parser, subparsers = build_parser()
     # Find the sub-command first so only its module is imported.
@@ -79,8 +100,18 @@ def main(argv: Sequence[str] | None = None) -> int:
     if args.command is None:
         parser.print_help()
         return int(ExitCode.USAGE)
+    # When the command started [s since the epoch]: the process's start when it is the entry
+    # point (a time limit then covers Python's start-up too), else now.
+    args.started_at = process_start() if argv_is_process else time.time()
     try:
-        return int(module.run(args))  # type: ignore[attr-defined]
+        code = int(module.run(args))  # type: ignore[attr-defined]
+        if name in QUICK_EXIT and argv_is_process:
+            # Freeing a large search graph at interpreter exit takes a noticeable share of a
+            # short time limit; nothing is left to clean up (files are closed), so leave now.
+            sys.stdout.flush()
+            sys.stderr.flush()
+            os._exit(code)
+        return code
     except ArtiplanError as exc:
         print(f"artiplan {args.command}: error: {exc}", file=sys.stderr)
         return int(exc.exit_code)

@@ -58,3 +58,22 @@ def test_plan_exit_code_for_time_limit(tmp_path: Path) -> None:
 def test_plan_rejects_bad_limits(tmp_path: Path) -> None:
     d, p = _files(tmp_path, 3, "ng")
     assert main(["plan", str(d), str(p), "--time-limit", "-1"]) == 2
+
+
+def test_a_long_search_shows_progress_and_keeps_its_time_limit(tmp_path: Path) -> None:
+    """A 30-link UACM problem does not finish in 4 s: progress lines every few seconds, exit 7,
+    and the limit covers the whole process (start-up included) within a loose bound."""
+    import subprocess
+    import sys
+    import time
+
+    d, p = _files(tmp_path, 30, "uacm")
+    start = time.monotonic()
+    proc = subprocess.run([sys.executable, "-m", "artiplan", "plan", str(d), str(p),
+                           "--time-limit", "4"], capture_output=True, text=True, timeout=120)
+    wall = time.monotonic() - start
+    assert proc.returncode == 7, proc.stderr[-500:]
+    progress = [ln for ln in proc.stderr.splitlines() if " s attempts=" in ln]
+    assert progress and "expanded=" in progress[0], proc.stderr[-500:]
+    assert "time limit of 4 s reached" in proc.stderr
+    assert wall < 4 + 2.0  # generous: only a stuck limit fails this

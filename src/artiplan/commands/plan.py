@@ -4,7 +4,9 @@ Prints the plan in VAL's format with the predicted events as ``; t: (event)`` li
 Fig. 6 style) on stdout; progress and statistics go to stderr. ``-o`` writes the plan file.
 Exit codes: 0 solved, 5 proven unsolvable, 6 no plan found, 7 time limit, 8 memory limit,
 3 bad input, 9 ``--planner enhsp|kairos`` unavailable, 1 internal error (a plan the validator
-rejects is one: it is never printed as solved).
+rejects is one: it is never printed as solved). A peer's plan (``--planner enhsp|kairos``) is
+judged by artiplan's validator like any other: an invalid one is still printed and written,
+marked by a first comment line, and the exit code is 4 with the reason on stderr.
 """
 
 from __future__ import annotations
@@ -71,13 +73,22 @@ def run(args: argparse.Namespace) -> int:
         _cap_address_space(args.memory_limit)
     if not args.quiet:
         print(f"artiplan plan: {args.problem} ({args.domain})", file=sys.stderr)
-    result = plan(args.domain, args.problem, time_limit=args.time_limit,
+    # The limit is the process's: Python's start-up and the imports count too.
+    limit = None if args.time_limit is None else max(0.0, args.time_limit - _since_start(args))
+    result = plan(args.domain, args.problem, time_limit=limit,
                   memory_limit=args.memory_limit, epsilon=args.epsilon,
-                  time_weight=args.time_weight)
+                  time_weight=args.time_weight, on_progress=None if args.quiet else _alive)
+    if result.status is PlanStatus.TIMEOUT and args.time_limit is not None:
+        result.message = (f"time limit of {args.time_limit:g} s reached (process wall "
+                          f"{_since_start(args):.2f} s)")
     if args.stats is not None:
         _write_stats(args.stats, result.status.value, result.message, result.stats)
     if not args.quiet:
         _progress(result.status.value, result.stats, result.message)
+    if result.stats.get("initial_events"):
+        print("artiplan plan: warning: events are enabled in the initial state ("
+              + ", ".join(result.stats["initial_events"][:3]) + "): they fire at time 0, but "
+              "VAL refuses such a problem whatever the plan", file=sys.stderr)
     if result.status is PlanStatus.SOLVED:
         assert result.plan is not None
         print(format_plan(result.plan), end="")
@@ -88,6 +99,21 @@ def run(args: argparse.Namespace) -> int:
         return int(ExitCode.OK)
     print(f"artiplan plan: {result.status.value}: {result.message}", file=sys.stderr)
     return int(result.status.exit_code)
+
+
+def _since_start(args: argparse.Namespace) -> float:
+    """Wall seconds since the command started (the process's start-up included when it is
+    the entry point: see ``artiplan.cli``)."""
+    import time
+
+    return max(0.0, time.time() - getattr(args, "started_at", time.time()))
+
+
+def _alive(elapsed: float, stats: dict[str, Any]) -> None:
+    """A progress line of a long search (every few seconds)."""
+    keys = ("attempts", "expanded", "generated", "duplicates", "events")
+    parts = " ".join(f"{k}={int(stats[k])}" for k in keys if k in stats)
+    print(f"artiplan plan: {elapsed:.0f} s {parts}", file=sys.stderr, flush=True)
 
 
 def _progress(status: str, stats: dict[str, Any], message: str) -> None:
@@ -123,13 +149,21 @@ def _external(args: argparse.Namespace) -> int:
     if res.plan is not None and status == "solved":
         from artiplan.backends.convert import close_at_end
         from artiplan.pddl import load_task
-        from artiplan.semantics.plan_io import format_plan, write_plan
+        from artiplan.semantics import validate
+        from artiplan.semantics.plan_io import format_plan
 
-        plan = close_at_end(res.plan, load_task(args.domain, args.problem))
-        print(format_plan(plan), end="")
+        task = load_task(args.domain, args.problem)
+        plan = close_at_end(res.plan, task)
+        report = validate(task, plan)
+        text = format_plan(plan)
+        if not report.valid:
+            print(f"artiplan plan: {args.planner}'s plan is INVALID: {report.reason}",
+                  file=sys.stderr)
+            text = f"; INVALID (artiplan validate): {report.reason}\n" + text
+        print(text, end="")
         if args.out is not None:
-            write_plan(plan, args.out)
-        return int(ExitCode.OK)
+            args.out.write_text(text)
+        return int(ExitCode.OK if report.valid else ExitCode.INVALID_PLAN)
     from artiplan.search.api import PlanStatus
 
     try:

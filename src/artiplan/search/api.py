@@ -11,6 +11,7 @@ reason.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 from enum import Enum
 from pathlib import Path
@@ -89,7 +90,7 @@ OPTIONS = {
 
 def plan(
     domain: str | Path, problem: str | Path, *, time_limit: float | None = None,
-    memory_limit: float | None = None, **options: Any,
+    memory_limit: float | None = None, on_progress: Progress | None = None, **options: Any,
 ) -> PlanResult:
     """Plan for a PDDL+ domain and problem (paths or PDDL text); see :func:`plan_task`.
 
@@ -102,26 +103,44 @@ def plan(
                      str(problem) if isinstance(problem, Path) else problem)
     load_s = time.perf_counter() - t0
     remaining = None if time_limit is None else max(0.0, time_limit - load_s)
-    result = plan_task(task, time_limit=remaining, memory_limit=memory_limit, **options)
+    result = plan_task(task, time_limit=remaining, memory_limit=memory_limit,
+                       on_progress=on_progress, **options)
     result.stats["ground_s"] = task.stats.seconds
     result.stats["parse_s"] = max(0.0, load_s - task.stats.seconds)
     result.stats["total_s"] = result.stats.get("total_s", 0.0) + load_s
     return result
 
 
+#: ``on_progress(elapsed [s], statistics so far)``: called every 2 s of a long planning call.
+Progress = Callable[[float, dict[str, Any]], None]
+
+
 def plan_task(
     task: Task, *, time_limit: float | None = None, memory_limit: float | None = None,
-    **options: Any,
+    on_progress: Progress | None = None, **options: Any,
 ) -> PlanResult:
-    """Plan for a grounded task under the limits (``time_limit`` [s], ``memory_limit`` [MB])."""
+    """Plan for a grounded task under the limits (``time_limit`` [s], ``memory_limit`` [MB]).
+
+    The limits cover the validation of the plans found too (it can take seconds on long
+    chains); ``on_progress`` is called about every 2 s with the counters so far.
+    """
     unknown = set(options) - set(OPTIONS)
     if unknown:
         raise UsageError(f"unknown planner option(s) {sorted(unknown)}; valid: {sorted(OPTIONS)}")
-    limits = Limits(time_limit, memory_limit)
-    t0 = time.perf_counter()
     stats: dict[str, Any] = {}
+    running: list[Search] = []  # the search under way, whose counters progress lines show
+
+    def report(elapsed: float) -> None:
+        assert on_progress is not None
+        now = dict(stats)
+        for k, v in (running[-1].stats.items() if running else ()):
+            now[k] = now.get(k, 0) + v
+        on_progress(elapsed, now)
+
+    limits = Limits(time_limit, memory_limit, on_progress=report if on_progress else None)
+    t0 = time.perf_counter()
     try:
-        result = _plan(task, limits, stats, options)
+        result = _plan(task, limits, stats, options, running)
     except LimitReached as exc:
         status = PlanStatus.TIMEOUT if exc.kind == "time" else PlanStatus.MEMOUT
         result = PlanResult(status, message=str(exc))
@@ -140,7 +159,10 @@ SCHEDULE = ((None, 2.0, 20), (None, 5.0, 40), (0.3, 2.0, 40), (1.0, 2.0, 80), (0
             (None, 2.0, None))
 
 
-def _plan(task: Task, limits: Limits, stats: dict[str, Any], options: dict[str, Any]) -> PlanResult:
+def _plan(
+    task: Task, limits: Limits, stats: dict[str, Any], options: dict[str, Any],
+    running: list[Search],
+) -> PlanResult:
     t = time.perf_counter()
     ct = compile_task(task)
     dyn = Dynamics(ct, DynamicsConfig(fallback_step=float(options.get("fallback_step", 0.1))))
@@ -161,7 +183,7 @@ def _plan(task: Task, limits: Limits, stats: dict[str, Any], options: dict[str, 
         if not options.get("validate", True):
             checked[0] = (found, None)
             return True
-        report = _validate(task, found, stats)
+        report = _validate(task, found, stats, limits)
         if report.valid:
             checked[0] = (found, report.trajectory)
             return True
@@ -180,10 +202,12 @@ def _plan(task: Task, limits: Limits, stats: dict[str, Any], options: dict[str, 
             budget = float("inf") if per_goal is None else per_goal * max(5, len(heur.groups))
             search = Search(ct, dyn, heur, config, limits.check, accept)
             stats["attempts"] = attempt
+            running[:] = [search]
             try:
                 outcome = search.run(initial_node(ct, dyn), budget)
             finally:
                 heuristic_s += heur.seconds
+                running.clear()
                 for k, v in search.stats.items():
                     stats[k] = stats.get(k, 0) + v
             if outcome.goal is not None or outcome.exhausted:
@@ -221,7 +245,7 @@ def _improve(
         if left is not None and left < 2.0 * validate_before:
             # validating might overrun the time limit: keep the first plan, validated already
             return SimpleNamespace(valid=False, reason="no time left to validate", trajectory=None)
-        return _validate(task, found, stats)
+        return _validate(task, found, stats, limits)
 
     t = time.perf_counter()
     best, report, extra = improve(ct, dyn, config, limits, first, int(stats.get("expanded", 0)),
@@ -235,11 +259,16 @@ def _improve(
     return best, None if report is None else report.trajectory
 
 
-def _validate(task: Task, found: Plan, stats: dict[str, Any]) -> Any:
+def _validate(task: Task, found: Plan, stats: dict[str, Any], limits: Limits) -> Any:
+    """The validator's report on a plan found; events enabled in the initial state (which VAL
+    refuses, whatever the plan) are accepted here and named in ``stats``."""
     from artiplan.semantics import validate
+    from artiplan.semantics.validator import enabled_initial_events
 
     t = time.perf_counter()
-    report = validate(task, found)
+    if "initial_events" not in stats:
+        stats["initial_events"] = [e.signature for e in enabled_initial_events(task)]
+    report = validate(task, found, check=limits.check, initial_events=True)
     stats["validate_s"] = stats.get("validate_s", 0.0) + time.perf_counter() - t
     return report
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import os
 import time
+from collections.abc import Callable
 from dataclasses import dataclass, field
 
 try:  # psutil is a dependency, but keep the limits usable without it
@@ -35,15 +36,22 @@ def rss_mb() -> float:
 
 @dataclass
 class Limits:
-    """Limits of one planning call; ``check()`` raises :class:`LimitReached`."""
+    """Limits of one planning call; ``check()`` raises :class:`LimitReached`.
+
+    ``on_progress(elapsed)`` is called from ``check()`` at most every ``progress_every``
+    seconds [s] of wall time (a long search shows it is alive).
+    """
 
     time_limit: float | None = None
     memory_limit: float | None = None  # MB
     every: int = 128
+    on_progress: Callable[[float], None] | None = None
+    progress_every: float = 2.0
     _wall0: float = field(default_factory=time.monotonic)
     _cpu0: float = field(default_factory=time.process_time)
     _rss0: float = 0.0
     _calls: int = 0
+    _reported: float = 0.0
 
     def __post_init__(self) -> None:
         if self.memory_limit is not None:
@@ -58,6 +66,11 @@ class Limits:
 
     def check(self) -> None:
         self._calls += 1
+        if self.on_progress is not None:
+            now = time.monotonic() - self._wall0
+            if now - self._reported >= self.progress_every:
+                self._reported = now
+                self.on_progress(now)
         if self.time_limit is not None:
             wall = time.monotonic() - self._wall0
             # process_time() is a system call that can cost milliseconds on a VM: read it less

@@ -18,6 +18,9 @@ What is implemented, exactly:
   preconditions, the goal and event triggers (so an event that puts a value exactly on another
   event's strict boundary bounces, as in VAL).
 * The goal is checked once, in the state after the last happening (and its events).
+* An initial state in which an event's precondition holds is refused (VAL: "Event
+  preconditions are not permitted to be satisfied in the initial state"), unless the caller
+  accepts it (``initial_events=True``: the events fire at time 0).
 * An action the task does not know (or an event written as an action) is "bad operator".
 * Undefined fluents read by a failed condition are reported as ``nan``.
 """
@@ -129,6 +132,7 @@ class _Run:
     config: FlowConfig
     tolerance: float
     check: bool
+    tick: Callable[[], None] | None = None
 
 
 def _condition_failure(
@@ -193,18 +197,25 @@ def run_plan(
     tolerance: float = 0.001,
     check: bool = True,
     extend: float = 0.0,
+    tick: Callable[[], None] | None = None,
+    initial_events: bool = False,
 ) -> ValidationReport:
     """Simulate ``plan``; with ``check`` also judge it (module docstring).
 
     ``extend`` [s]: keep simulating (events included) that long after the plan's end, so the
     trajectory predicts what happens next; the goal is still checked at the plan's end.
+    ``tick()`` is called before every happening; what it raises (a caller's time limit) ends
+    the run. ``initial_events``: accept an initial state in which events are enabled (they
+    fire at time 0); VAL refuses such a problem, and so does the check by default.
     """
-    run = _Run(task, tol, config, tolerance, check)
+    run = _Run(task, tol, config, tolerance, check, tick)
     traj = Trajectory(task.fluents)
     state = initial_state(task)
     traj.rows.append(TrajectoryRow(0.0, "init", state.values, "init"))
     report = ValidationReport(True, trajectory=traj, events=traj.events)
     try:
+        if check and not initial_events:
+            _check_initial_events(run, state)
         state, flow = _run_happenings(run, plan, state, traj)
         traj.final_state = state
         if check and not holds_values(task.goal, state.facts, state.values, tol):
@@ -239,6 +250,21 @@ def run_plan(
         report = ValidationReport(False, f"{what} (after time {t:.6f})", "error", time=t)
         report.trajectory, report.events = traj, traj.events
     return report
+
+
+def enabled_initial_events(task: Task, tol: Tolerances = VAL_TOLERANCES) -> list[GroundAction]:
+    """The events whose precondition holds in the initial state (read as VAL reads it)."""
+    state = initial_state(task)
+    return [e for e in task.events if holds_values(e.precondition, state.facts, state.values, tol)]
+
+
+def _check_initial_events(run: _Run, state: State) -> None:
+    enabled = enabled_initial_events(run.task, run.tol)
+    if enabled:
+        names = ", ".join(e.signature for e in enabled[:3]) + (" ..." if len(enabled) > 3 else "")
+        raise _fail("event", f"event preconditions hold in the initial state ({names}): VAL "
+                    "does not allow an event at time 0", 0, 0.0,
+                    condition=format_condition(enabled[0].precondition, run.task))
 
 
 def _on_event(
@@ -277,6 +303,8 @@ def _run_happenings(run: _Run, plan: Plan, state: State, traj: Trajectory) -> tu
     recent: list[tuple[float, list[tuple[TimedAction, GroundAction]]]] = []
     flow = None
     for index, ((t, _), acts) in enumerate(zip(groups, resolved, strict=True), 1):
+        if run.tick is not None:
+            run.tick()
         try:
             res = advance(task, state, t, run.tol, run.config, on_event=cb, flow=flow)
         except EventError as exc:
@@ -318,9 +346,16 @@ def validate(
     *,
     tol: Tolerances = VAL_TOLERANCES,
     config: FlowConfig = DEFAULT_FLOW,
+    check: Callable[[], None] | None = None,
+    initial_events: bool = False,
 ) -> ValidationReport:
-    """Validate ``plan`` against ``task`` with VAL's semantics (module docstring)."""
-    return run_plan(task, plan, tol=tol, config=config, tolerance=tolerance, check=True)
+    """Validate ``plan`` against ``task`` with VAL's semantics (module docstring).
+
+    ``check()``, if given, is called before every happening (a caller's time limit: what it
+    raises propagates). ``initial_events``: accept events enabled in the initial state (VAL
+    refuses them; see :func:`run_plan`)."""
+    return run_plan(task, plan, tol=tol, config=config, tolerance=tolerance, check=True,
+                    tick=check, initial_events=initial_events)
 
 
 def simulate(
