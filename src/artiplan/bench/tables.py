@@ -16,14 +16,17 @@ def _split(variant: str) -> tuple[str, str]:
 
 
 def cell_text(cell: Cell | None) -> str:
-    """The paper's cell: ``mean (percent)``; ``-- (0)`` if none solved; blank without runs."""
+    """The paper's cell: ``mean (percent)``; ``-- (0)`` if none solved; blank without runs.
+    With stock VAL's verdicts: ``mean (percent / VAL percent)``."""
     if cell is None:
         return ""
     if cell.mean_s is None:
         mean = "--"
     else:  # the paper's one decimal; two below 1 s so fast planners do not all read 0.0
         mean = f"{cell.mean_s:.1f}" if cell.mean_s >= 1 else f"{cell.mean_s:.2f}"
-    return f"{mean} ({cell.pct:.0f})"
+    if cell.val_pct is None:
+        return f"{mean} ({cell.pct:.0f})"
+    return f"{mean} ({cell.pct:.0f} / {cell.val_pct:.0f})"
 
 
 def table1_markdown(
@@ -144,7 +147,7 @@ def status_markdown(counts: dict[str, dict[str, int]]) -> str:
 def rows_csv(found: Sequence[Row]) -> str:
     """Every run as CSV (no plan text), for spreadsheets."""
     keys = ["planner", "variant", "size", "task", "status", "planner_status", "cpu_s", "wall_s",
-            "peak_mb", "makespan", "n_actions", "valid", "problem_id"]
+            "peak_mb", "makespan", "n_actions", "valid", "val_valid", "problem_id"]
     lines = [",".join(keys)]
     for row in found:
         lines.append(",".join("" if row.get(k) is None else str(row.get(k)) for k in keys))

@@ -45,13 +45,15 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
     parser.add_argument("--sizes", type=_sizes, help="only these sizes, e.g. 3,4,5")
     parser.add_argument("--check-tools", action="store_true",
                         help="fail at once (exit 9) if a planner's program is missing")
+    parser.add_argument("--no-val", action="store_true",
+                        help="do not ask stock VAL about the plans (default: ask when installed)")
 
 
 def run(args: argparse.Namespace) -> int:
     from artiplan.backends import get_planner
     from artiplan.bench.jobs import Job
     from artiplan.bench.run import RunConfig, run_jobs
-    from artiplan.bench.suite import load_suite, select
+    from artiplan.bench.suite import load_suite, on_disk, select
 
     if args.time_limit <= 0 or args.memory_limit <= 0 or args.jobs < 1:
         raise UsageError("--time-limit, --memory-limit and --jobs must be positive")
@@ -59,13 +61,14 @@ def run(args: argparse.Namespace) -> int:
     if args.check_tools:
         for planner in planners:
             planner.check_available()
-    problems = select(load_suite(args.suite_dir), args.models, args.sizes)
+    problems = select(on_disk(load_suite(args.suite_dir), args.suite_dir), args.models,
+                      args.sizes)
     if not problems:
         raise UsageError("no problem of the suite matches --models/--sizes")
     # Problem-major order: every planner meets each problem before the next one, so a partial
     # run compares planners on the same problems.
     jobs = [
-        Job(p.name, problem, args.time_limit, args.memory_limit)
+        Job(p.name, problem, args.time_limit, args.memory_limit, val=not args.no_val)
         for problem in problems for p in planners
     ]
     try:

@@ -34,7 +34,8 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                         help="output folder (default demo-out)")
     parser.add_argument("--intervene", action="store_true",
                         help=f"a human pushes {INTERVENTION[0]} by {INTERVENTION[2]:g} deg on "
-                             f"{INTERVENTION[1]} at {INTERVENTION[3]:.0%} of the first plan")
+                             f"{INTERVENTION[1]} at {100 * INTERVENTION[3]:.0f}%% of the first "
+                             "plan")
     parser.add_argument("--model", choices=("ng", "ucm", "uacm"), default="ucm")
     parser.add_argument("--links", type=int, default=DEMO_LINKS, help="links (default 4)")
     parser.add_argument("--hands", choices=("baxter", "virtual"), default="baxter",

@@ -97,6 +97,22 @@ def _parameters(options: EncodingOptions) -> dict[str, Any]:
     return params
 
 
+def suite_problem(
+    label: str, size: int, task: int, seed: int = 0, goal_style: str = "threshold"
+) -> tuple[str, str]:
+    """The domain and problem text of one suite problem: model setting ``label`` (``ng``,
+    ``ucm-0.1``, ...; see :data:`SUITE_MODELS`), ``size`` links, task ``task`` (1-based)."""
+    options = dict(SUITE_MODELS).get(label)
+    if options is None:
+        raise ValueError(f"unknown suite model {label!r}; valid: "
+                         f"{', '.join(lb for lb, _ in SUITE_MODELS)}")
+    t = make_task(size, task, seed)
+    obj = ArticulatedObject(size)
+    goal = make_goal(obj, t.target, goal_style, t.seed, planes=options.planes)
+    problem = problem_pddl(obj, t.initial, t.target, options, goal=goal, name=t.name)
+    return domain_pddl(None, options), problem
+
+
 def write_suite(outdir: str | Path, seed: int = 0, goal_style: str = "threshold") -> list[Path]:
     """Write the 240 problems, 6 domains and ``suite.json`` under ``outdir``.
 

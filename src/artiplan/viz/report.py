@@ -180,7 +180,9 @@ def write_report(rows: Sequence[dict[str, Any]], outdir: Path, source: str = "")
     index += ["## Summary", "", tables.summary_markdown(summaries, limit)]
     counts = {n: agg.status_counts(data, n) for n in names}
     index += ["## Runs by status", "", tables.status_markdown(counts)]
-    index += ["## Table 1: mean CPU time of solved runs [s] (percentage solved)", ""]
+    title = "## Table 1: mean CPU time of solved runs [s] (percentage solved"
+    title += " / percentage whose plan stock VAL accepts too)" if agg.has_val(data) else ")"
+    index += [title, ""]
     for name in names:
         cells = agg.table1(data, name)
         md = tables.table1_markdown(cells, variants, sizes)

@@ -4,7 +4,7 @@
   (:init (connected l1 l2) (connected l2 l3) (affects l2 l3)
          (free-to-move l1) (free-to-move l2) (free-to-move l3)
          (= (speed-i) 10) (= (speed-d) 10)
-         (= (angle l1 xy) 0) (= (angle l1 z) 90)
+         (= (angle l1 xy) 5) (= (angle l1 z) 90)
          (= (angle l2 xy) 10) (= (angle l2 z) 90)
          (= (angle l3 xy) 20) (= (angle l3 z) 90))
   (:goal (and (> (angle l3 xy) 60) (< (angle l3 xy) 80) (> (angle l3 z) 120)))

@@ -42,9 +42,9 @@
   (:event back-to-zero
     :parameters (?l - link ?x - plane)
     :precondition (>= (angle ?l ?x) 360)
-    :effect (assign (angle ?l ?x) 0.5))
+    :effect (and (assign (angle ?l ?x) 0.5)))
   (:event back-to-360
     :parameters (?l - link ?x - plane)
     :precondition (< (angle ?l ?x) 0)
-    :effect (assign (angle ?l ?x) 359.5))
+    :effect (and (assign (angle ?l ?x) 359.5)))
 )
