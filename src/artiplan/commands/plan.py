@@ -85,6 +85,10 @@ def run(args: argparse.Namespace) -> int:
         _write_stats(args.stats, result.status.value, result.message, result.stats)
     if not args.quiet:
         _progress(result.status.value, result.stats, result.message)
+    margins = result.stats.get("margins") or {}
+    if margins and not margins.get("ok", True):
+        print(f"artiplan plan: warning: small margin: {margins.get('note')} (validators may "
+              "disagree on this plan)", file=sys.stderr)
     if result.stats.get("initial_events"):
         print("artiplan plan: warning: events are enabled in the initial state ("
               + ", ".join(result.stats["initial_events"][:3]) + "): they fire at time 0, but "
@@ -126,7 +130,8 @@ def _progress(status: str, stats: dict[str, Any], message: str) -> None:
 
 def _write_stats(path: Path, status: str, message: str, stats: dict[str, Any]) -> None:
     doc = {"schema": 1, "status": status, "message": message,
-           **{k: v for k, v in stats.items() if isinstance(v, (int, float, str, bool, list))}}
+           **{k: v for k, v in stats.items()
+              if isinstance(v, (int, float, str, bool, list, dict))}}
     path.write_text(json.dumps(doc, indent=2, sort_keys=True) + "\n")
 
 

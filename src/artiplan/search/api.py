@@ -227,7 +227,41 @@ def _plan(
     stats["plan_length"] = len(found.actions)
     stats["makespan"] = found.makespan
     stats["validated"] = bool(options.get("validate", True))
+    if trajectory is not None:
+        stats["margins"] = plan_margins(task, found, trajectory, config.event_gap)
     return PlanResult(PlanStatus.SOLVED, found, trajectory)
+
+
+#: A goal that holds by less than this at the plan's end [units of its values] has no margin.
+GOAL_MARGIN_MIN = 1e-3
+
+
+def plan_margins(task: Task, found: Plan, trajectory: Any, event_gap: float) -> dict[str, Any]:
+    """How robust a validated plan is: ``event_gap_s``, the closest an action comes to an event
+    [s] (None without events); ``goal_margin``, how far the goal is from failing at the end
+    (in its values' units, e.g. deg); ``ok`` when both are at least ``event_gap`` and
+    ``GOAL_MARGIN_MIN``; otherwise ``note`` says why (e.g. a goal window narrower than the
+    margin, or an action the semantics ties to an event)."""
+    from artiplan.semantics.expressions import robustness
+
+    times = [a.time for a in found.actions]
+    gaps = [abs(a - e.time) for a in times for e in trajectory.events]
+    gap = min(gaps) if gaps else None
+    final = trajectory.final_state
+    margin = robustness(task.goal, final.facts, final.values) if final is not None else None
+    notes = []
+    if gap is not None and gap < event_gap - 1e-9:
+        notes.append(f"an action {gap:.6f} s from an event (wanted {event_gap:g} s)")
+    if margin is not None and margin < GOAL_MARGIN_MIN:
+        notes.append(f"the goal holds by only {margin:.2g} at the end")
+    out: dict[str, Any] = {
+        "event_gap_s": None if gap is None else round(gap, 6),
+        "goal_margin": None if margin is None or margin == float("inf") else round(margin, 6),
+        "ok": not notes,
+    }
+    if notes:
+        out["note"] = "; ".join(notes)
+    return out
 
 
 def _improve(

@@ -22,9 +22,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from artiplan.search.compiled import CompiledTask, CondFn
+from artiplan.search.compiled import VAL_READING, CompiledTask, CondFn
 from artiplan.search.flow import (
     DT_MIN,
+    STILL,
     Flow,
     FlowShape,
     advance_values,
@@ -262,9 +263,14 @@ class Dynamics:
         raise ZenoError(f"time cannot pass beyond t={t:.6f}")
 
     def wait_next(
-        self, t: float, facts: int, values: Values, log: EventLog, active: tuple[int, ...]
+        self, t: float, facts: int, values: Values, log: EventLog, active: tuple[int, ...],
+        margin: float = 0.0, goal_comps: frozenset[int] = frozenset(),
     ) -> tuple[float, int, Values, tuple[int, ...]] | None:
-        """Wait until just after the next time a watched condition may change truth value."""
+        """Wait until just after the next time a watched condition may change truth value.
+
+        When that change makes goal comparisons (``goal_comps``) true, the wait runs on for
+        ``margin`` [s] while they keep holding, so an action there sees them with a margin.
+        """
         flow = self.flow_of(active, values)
         if not flow.moving:
             return None
@@ -272,8 +278,26 @@ class Dynamics:
         if dt is None:
             return None
         until = grid_after(t + dt, self.config.grid)
-        facts, values, act = self.advance(t, facts, values, until, log, active)
-        return until, facts, values, act
+        facts2, values2, act = self.advance(t, facts, values, until, log, active)
+        if margin > 0.0 and goal_comps:
+            newly = frozenset(c for c in goal_comps
+                              if not self._comp_holds(c, values) and self._comp_holds(c, values2))
+            if newly:
+                def cond(_f: int, v: Values) -> bool:
+                    return all(self._comp_holds(c, v) for c in newly)
+
+                return self._with_margin(until, facts2, values2, cond, newly, log, act, margin)
+        return until, facts2, values2, act
+
+    def _comp_holds(self, cid: int, values: Values) -> bool:
+        """Truth of comparison ``cid`` at ``values`` (VAL's reading)."""
+        item = self.ct.comps.items[cid]
+        p = comparison_poly(item, values, STILL)
+        if p is None:
+            return False
+        d = p[0] + VAL_READING.offset(item.op)
+        return {">": d > 0, ">=": d >= 0, "<": d < 0, "<=": d <= 0}.get(item.op, abs(p[0]) <=
+                                                                        VAL_READING.eps)
 
     def wait_until(
         self, t: float, facts: int, values: Values, cond: CondFn, cond_comps: frozenset[int],

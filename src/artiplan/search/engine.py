@@ -154,7 +154,8 @@ class Search:
             return Node(t, facts, values, ready, pi, op, log, True, active, after,
                         parent.n_actions + 1, last_event_after(parent, log))
         if op[0] == "w":
-            res = dyn.wait_next(parent.time, parent.facts, parent.values, log, parent.active)
+            res = dyn.wait_next(parent.time, parent.facts, parent.values, log, parent.active,
+                                self.config.goal_margin, self.ct.goal_comps)
         else:
             if op[0] == "u":
                 g = self.h.groups[op[1]]

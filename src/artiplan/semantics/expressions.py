@@ -109,6 +109,28 @@ def holds_values(
     return cond.value
 
 
+def robustness(cond: Condition, facts: Collection[int], values: Sequence[float]) -> float:
+    """How far ``cond`` is from changing truth value, in the units of its comparisons.
+
+    Positive when it holds (the least change of a compared difference that would make it
+    false), negative when it does not (minus the least change that would make it true);
+    facts and constants count as +-inf. ``And`` takes the minimum, ``Or`` the maximum.
+    """
+    if isinstance(cond, Atom):
+        return math.inf if cond.fact in facts else -math.inf
+    if isinstance(cond, Truth):
+        return math.inf if cond.value else -math.inf
+    if isinstance(cond, Not):
+        return -robustness(cond.operand, facts, values)
+    if isinstance(cond, And | Or):
+        parts = [robustness(p, facts, values) for p in cond.parts]
+        if not parts:
+            return math.inf if isinstance(cond, And) else -math.inf
+        return min(parts) if isinstance(cond, And) else max(parts)
+    d = evaluate(cond.left, values) - evaluate(cond.right, values)
+    return {">": d, ">=": d, "<": -d, "<=": -d}.get(cond.op, -abs(d))
+
+
 def holds(cond: Condition, state: State, tol: Tolerances = EXACT) -> bool:
     """Truth of ``cond`` in ``state``."""
     return holds_values(cond, state.facts, state.values, tol)
