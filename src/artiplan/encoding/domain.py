@@ -6,20 +6,26 @@ from the published models it is for correctness under VAL's semantics (shared/do
 each departure is marked ``DEPARTURE`` below and explained in docs/encodings.md:
 
 1. Wrap-around: ``back-to-zero`` fires at ``>= 360`` and assigns 0; ``back-to-360`` fires at
-   ``<= -0.01`` and assigns 359.99. No event lands within VAL's comparison slack (1e-4) of
-   another event's boundary, so wraps never bounce; angles live in [-0.01, 360). (Adding or
-   subtracting 360 instead would keep a fixed-step planner's overshoot, but it made ENHSP's
-   heuristic solve 5 instead of 9 of 10 small NG problems: benchmarks/results/encoding.md.)
+   ``<= -m`` and assigns 360 - m (``m`` = ``EncodingOptions.margin``, 0.2 deg at 10 deg/s). No
+   event lands within VAL's comparison slack (1e-4) of another event's boundary, so wraps
+   never bounce, and no two events of one motion fall within VAL's 0.01 s event window;
+   angles live in [-m, 360). (Adding or subtracting 360 instead would keep a fixed-step
+   planner's overshoot, but it made ENHSP's heuristic solve 5 instead of 9 of 10 small NG
+   problems: benchmarks/results/encoding.md.)
 2. Processes have only continuous effects (VAL rejects Booleans in processes): "gravity acts on
    l" is derived from the state. ``(link-index ?l)`` is static; ``(held-index)`` is the index of
    the link being rotated (1 when the hands are free: L1 is always clamped). A link feels
    gravity when its index exceeds ``held-index`` (it is not held and no held link is tip-ward of
    it). The comparison is against ``held-index + 0.5`` so that VAL's slack on strict
    comparisons can never make equal integers compare greater.
-3. UACM: the per-link speed ``gravity-speed`` is switched by events with Boolean flags
-   (``decreasing-angle-gravity``/``increasing-angle-gravity``) instead of a reset event on
-   ``(> speed 0)``, which is not self-falsifying under VAL's slack. Start and stop thresholds
-   are 0.01 deg apart (hysteresis) so a stop event never re-enables its start event.
+3. UCM and UACM: gravity is switched by events with Boolean flags
+   (``decreasing-angle-gravity``/``increasing-angle-gravity``) that read only the angle, and
+   the processes read the flags and "feels gravity" (changed only by actions): every process
+   starts and stops at a happening, and no action triggers an event (what VAL needs, see
+   docs/encodings.md "Gravity"). Start and stop thresholds are ``m`` apart (hysteresis) so a
+   stop event never re-enables its start event; the problem starts with the flags its angles
+   imply. UACM's speeds are reset to 0 by the events and, for the links a grasp stops, by the
+   grasp itself.
 4. ``observe``: a no-effect action, so a plan can end when a process completes the goal.
 """
 
@@ -61,7 +67,7 @@ def _header(options: EncodingOptions) -> str:
             "(increasing-angle-gravity ?l - link)",
             "(decreasing-angle-gravity ?l - link)",
         ]
-    if options.reach_time is not None:
+    if options.has_reach:
         functions += ["(reach-time)", "(reach-clock)"]
         predicates.append("(reaching)")
     if options.carry == "projected":
@@ -96,7 +102,7 @@ def _robot(options: EncodingOptions, sign: str) -> str:
         (when (not (affects ?l2 ?l))
           (assign (gravity-speed ?l) 0)))"""
     held_stop = "\n      (assign (held-index) 1)" if options.has_gravity else ""
-    timed = options.reach_time is not None
+    timed = options.has_reach
     ready = "\n      (not (reaching))" if timed else ""
     reach = "\n      (reaching)\n      (assign (reach-clock) 0)" if timed else ""
     carried = _carried(options, speed, "?p")
@@ -308,7 +314,7 @@ def domain_pddl(obj: ArticulatedObject | None, options: EncodingOptions) -> str:
         parts += [_gravity(options, "decrease"), _gravity(options, "increase")]
     if options.model == "uacm":
         parts.append(_ACCELERATE)
-    if options.reach_time is not None:
+    if options.has_reach:
         parts.append(_reach())
     parts.append(_OBSERVE)
     return "".join(parts) + ")\n"

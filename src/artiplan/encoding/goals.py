@@ -2,7 +2,7 @@
 
 See shared/docs/conventions.md ("Goals of the suite"). Goal links are L3, L5, L7, ... (every
 second link from L3; L2 for a 2-link object, which has no L3). Angles in the models live in
-[-0.01, 360) (see :mod:`artiplan.encoding.domain`).
+[-m, 360), m = ``EncodingOptions.margin`` (see :mod:`artiplan.encoding.domain`).
 """
 
 from __future__ import annotations

@@ -32,7 +32,9 @@ class EncodingOptions:
         gravity_plane: The plane on which gravity acts (must be one of ``planes``).
         reach_time: Optional time [s] the robot needs between releasing a link and the next
             grasp (``None``: grasps are instantaneous, as in the paper). Gravity keeps acting
-            meanwhile.
+            meanwhile. A reach time shorter than 1.5 x VAL's event window (15 ms) is modelled
+            as instantaneous: VAL would fire ``hands-ready`` at the release itself, and then
+            lose the processes the release starts (benchmarks/results/semantics.md).
         carry: How a vertical-plane rotation (the robot's or gravity's) moves the links it
             carries. ``rigid`` (the paper): every carried link's gamma changes at the rotated
             link's rate. ``projected``: at that rate times ``cos(theta_j - theta_k)``, the
@@ -74,6 +76,11 @@ class EncodingOptions:
     def has_gravity(self) -> bool:
         """True for UCM and UACM."""
         return self.model != "ng"
+
+    @property
+    def has_reach(self) -> bool:
+        """True when the domain models the reach time (see ``reach_time``)."""
+        return self.reach_time is not None and self.reach_time >= 1.5 * VAL_EVENT_WINDOW
 
     @property
     def margin(self) -> float:

@@ -40,7 +40,7 @@ def build_problem(
     precondition that reads ``connected`` is the grasp's).
     """
     text = problem_pddl(obj, canonical(perceived), target, options, goal=goal, name="replan")
-    if hands_away and options.reach_time is not None:
+    if hands_away and options.has_reach:
         text = text.replace("(:init\n", "(:init\n    (reaching)\n", 1)
     for hold, turn in sorted(blocked):
         text = text.replace(f"    (connected {hold} {turn})\n", "", 1)
