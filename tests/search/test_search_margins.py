@@ -8,7 +8,7 @@ import pytest
 from artiplan import plan
 from artiplan.encoding.suite import suite_problem
 from artiplan.pddl.task import And, Atom, Comparison, Const, FluentRef, Not, Or
-from artiplan.semantics.expressions import robustness
+from artiplan.semantics.walks import robustness
 
 
 @pytest.mark.parametrize("variant", ["ng", "ucm-1.0", "uacm-0.5"])
@@ -28,10 +28,10 @@ def test_suite_plans_keep_their_margins(variant: str, task: int) -> None:
 def test_robustness_is_the_distance_to_a_change_of_truth() -> None:
     x, y = FluentRef(0), FluentRef(1)
     window = And((Comparison(">", x, Const(10.0)), Comparison("<", x, Const(20.0))))
-    assert robustness(window, set(), [12.0, 0.0]) == pytest.approx(2.0)
-    assert robustness(window, set(), [25.0, 0.0]) == pytest.approx(-5.0)
+    assert robustness(window, 0, [12.0, 0.0]) == pytest.approx(2.0)
+    assert robustness(window, 0, [25.0, 0.0]) == pytest.approx(-5.0)
     either = Or((Comparison(">=", y, Const(1.0)), window))
-    assert robustness(either, set(), [12.0, 4.0]) == pytest.approx(3.0)
-    assert robustness(Not(window), set(), [12.0, 0.0]) == pytest.approx(-2.0)
-    assert robustness(Atom(0), {0}, [0.0, 0.0]) == float("inf")
-    assert robustness(Comparison("=", x, Const(1.0)), set(), [1.25, 0.0]) == pytest.approx(-0.25)
+    assert robustness(either, 0, [12.0, 4.0]) == pytest.approx(3.0)
+    assert robustness(Not(window), 0, [12.0, 0.0]) == pytest.approx(-2.0)
+    assert robustness(Atom(0), 0b1, [0.0, 0.0]) == float("inf")
+    assert robustness(Comparison("=", x, Const(1.0)), 0, [1.25, 0.0]) == pytest.approx(-0.25)

@@ -23,10 +23,9 @@ from artiplan.pddl.task import (
     Task,
 )
 from artiplan.search.api import PlanStatus, plan_task
-from artiplan.search.compiled import compile_task
-from artiplan.search.dynamics import Dynamics, grid_after
-from artiplan.search.flow import first_root
 from artiplan.search.intervals import Jump, condition_set, travel
+from artiplan.search.waits import Waits, grid_after
+from artiplan.semantics import Kernel, compile_task
 
 X, V = FluentRef(0), FluentRef(1)
 ON = 0
@@ -47,16 +46,16 @@ ACCEL = (
 )
 
 
-def _running(task: Task) -> tuple[Dynamics, int, tuple[float, ...], tuple[int, ...]]:
+def _running(task: Task) -> tuple[Waits, int, tuple[float, ...], tuple[int, ...]]:
     ct = compile_task(task)
-    dyn = Dynamics(ct)
-    facts, values, active = dyn.settle(0.0, 1 << ON, ct.init_values, [])
-    return dyn, facts, values, active
+    kernel = Kernel(ct)
+    facts, values, active = kernel.settle(0.0, 1 << ON, ct.init_values, [])
+    return Waits(kernel), facts, values, active
 
 
 def test_wait_stops_just_after_a_linear_crossing() -> None:
     dyn, facts, values, active = _running(_task((LINEAR,), Comparison(">", X, Const(5.0))))
-    res = dyn.wait_next(0.0, facts, values, [], active)
+    res = dyn.next(0.0, facts, values, [], active)
     assert res is not None
     t, _, vals, _ = res
     assert t == grid_after(2.0, 1e-6)  # x = 1 + 2t crosses 5 at t = 2
@@ -66,7 +65,7 @@ def test_wait_stops_just_after_a_linear_crossing() -> None:
 
 def test_wait_solves_a_quadratic_exactly() -> None:
     dyn, facts, values, active = _running(_task(ACCEL, Comparison(">", X, Const(5.0))))
-    res = dyn.wait_next(0.0, facts, values, [], active)
+    res = dyn.next(0.0, facts, values, [], active)
     assert res is not None
     # x = 1 + t^2 / 2 crosses 5 at t = sqrt(8)
     assert res[0] == pytest.approx(math.sqrt(8.0), abs=3e-6)
@@ -79,17 +78,9 @@ def test_event_fires_at_its_exact_time_and_jumps() -> None:
     task = _task((LINEAR,), Comparison(">", X, Const(100.0)), (jump,))
     dyn, facts, values, active = _running(task)
     log: list[tuple[float, int]] = []
-    facts, values, _ = dyn.advance(0.0, facts, values, 2.0, log, active)
+    facts, values, _ = dyn.kernel.advance(0.0, facts, values, 2.0, log, active)
     assert log == [(pytest.approx(1.0), 0)]  # x = 1 + 2t reaches 3 at t = 1
     assert values[0] == pytest.approx(-10.0 + 2.0 * 1.0)
-
-
-def test_first_root_ignores_now_and_the_past() -> None:
-    assert first_root((-4.0, 2.0)) == pytest.approx(2.0)
-    assert first_root((4.0, 2.0)) is None
-    assert first_root((0.0, 1.0)) is None
-    assert first_root((-1.0, 0.0, 1.0)) == pytest.approx(1.0)
-    assert first_root((-4.0, 2.0), horizon=1.0) is None
 
 
 def test_travel_follows_wrap_around_jumps() -> None:
@@ -118,12 +109,12 @@ def test_planner_proves_a_constant_goal_unsolvable() -> None:
     assert plan_task(task).status is PlanStatus.UNSOLVABLE_PROVEN
 
 
-def test_non_polynomial_dynamics_use_a_counted_fallback() -> None:
+def test_non_polynomial_dynamics_use_the_numeric_flow() -> None:
     growth = GroundProcess("grow", (), Atom(ON), (ContinuousEffect(0, X),))  # x' = x: e^t
     task = _task((growth,), Comparison(">", X, Const(5.0)))
-    result = plan_task(task, time_limit=30, fallback_step=0.05)
+    result = plan_task(task, time_limit=30)
     assert result.status is PlanStatus.SOLVED, result.message
-    assert result.stats["fallback_steps"] > 0
+    assert result.stats["numeric_flows"] > 0
     assert result.plan is not None
     # the goal wait runs on for the goal margin (0.01 s) while the goal keeps holding
     assert math.log(5.0) - 1e-3 <= result.plan.makespan <= math.log(5.0) + 0.01 + 1e-3

@@ -51,11 +51,9 @@ def test_assignments_and_add_delete_conflicts_interfere() -> None:
     assert interferes(cond, act("e", delete=(6,)))
 
 
-def test_state_key_rounds_values_and_ignores_time() -> None:
-    a = State(1.0, frozenset({1}), (1.0000001, 2.0))
-    b = State(5.0, frozenset({1}), (1.0000002, 2.0))
-    assert a.key() == b.key()
-    assert a.key(1e-9) != b.key(1e-9)
+def test_state_facts_are_a_bit_mask() -> None:
+    state = State(1.0, 0b101, (1.0, 2.0))
+    assert state.holds_fact(0) and not state.holds_fact(1) and state.holds_fact(2)
 
 
 def test_format_condition_without_a_task() -> None:

@@ -16,18 +16,24 @@ from artiplan.encoding import EncodingOptions, domain_pddl, problem_pddl
 from artiplan.model import ArticulatedObject, Configuration
 from artiplan.pddl import load_task
 from artiplan.pddl.task import Effect, Task
-from artiplan.semantics import Plan, TimedAction, compile_condition, compile_expr, simulate
+from artiplan.semantics import Plan, TimedAction, evaluate, holds, simulate
+from artiplan.tolerances import EXACT
 
 STEP = 1e-3
 
 
-def _apply(effect: Effect, facts: set[int], values: list[float]) -> tuple[set[int], list[float]]:
-    """Apply one effect (no conditional effects in these encodings) on copies."""
+def _apply(effect: Effect, facts: int, values: list[float]) -> tuple[int, list[float]]:
+    """Apply one effect on copies (a conditional effect's condition read exactly)."""
     old = list(values)
-    facts = (facts - set(effect.delete)) | set(effect.add)
+    parts = [effect] + [ce.effect for ce in effect.conditional
+                        if holds(ce.condition, facts, old, EXACT)]
+    for part in parts:
+        facts &= ~sum(1 << f for f in part.delete)
+    for part in parts:
+        facts |= sum(1 << f for f in part.add)
     values = list(values)
-    for ne in effect.numeric:
-        rhs = compile_expr(ne.expr)(old)
+    for ne in [ne for part in parts for ne in part.numeric]:
+        rhs = evaluate(ne.expr, old)
         if ne.op == "assign":
             values[ne.fluent] = rhs
         elif ne.op == "increase":
@@ -39,11 +45,14 @@ def _apply(effect: Effect, facts: set[int], values: list[float]) -> tuple[set[in
 
 def naive(task: Task, plan: Plan, end: float) -> tuple[list[float], list[str]]:
     """Final values and the names of the events fired, by fixed steps."""
-    events = [(e, compile_condition(e.precondition)) for e in task.events]
-    procs = [(p, compile_condition(p.precondition), [(c.fluent, compile_expr(c.rate))
-                                                     for c in p.continuous])
+    def on(cond):  # type: ignore[no-untyped-def]
+        return lambda f, v: holds(cond, f, v, EXACT)
+
+    events = [(e, on(e.precondition)) for e in task.events]
+    procs = [(p, on(p.precondition), [(c.fluent, (lambda r: lambda v: evaluate(r, v))(c.rate))
+                                      for c in p.continuous])
              for p in task.processes]
-    facts = set(task.init_facts)
+    facts = sum(1 << f for f in task.init_facts)
     values = [0.0 if v is None else v for v in task.init_values]
     fired: list[str] = []
 

@@ -19,7 +19,8 @@ from semantics_builders import (
     wrap_events,
 )
 
-from artiplan.semantics import EXACT, Plan, TimedAction, simulate, validate
+from artiplan.semantics import Plan, TimedAction, simulate, validate
+from artiplan.tolerances import EXACT
 
 ROT = ("L1", "L2", "z-axis")
 

@@ -12,7 +12,7 @@ from __future__ import annotations
 import dataclasses
 
 from artiplan.pddl.task import TRUE, Task
-from artiplan.search.compiled import is_noop
+from artiplan.semantics.compiled import is_noop
 from artiplan.semantics.plan import Plan, TimedAction
 from artiplan.semantics.plan_io import parse_enhsp_output, parse_plan
 

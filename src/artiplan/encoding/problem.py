@@ -32,7 +32,7 @@ def _init_facts(obj: ArticulatedObject, init: Configuration, options: EncodingOp
         facts += [f"(= (gravity-speed {lk}) 0)" for lk in obj.links]
     if options.has_gravity:
         facts += _gravity_flags(obj, init, options)
-    if options.has_reach:
+    if options.has_reach and options.reach_time is not None:
         facts += [f"(= (reach-time) {fmt_number(options.reach_time)})", "(= (reach-clock) 0)"]
     if options.carry == "projected":
         facts += _carry_facts(obj, init, options)

@@ -36,9 +36,9 @@ class FluentRef:
 
 @dataclass(frozen=True)
 class BinOp:
-    """``left op right`` with op one of ``+ - * /``."""
+    """``left op right`` with op one of ``+ - * /`` or ``^`` (power)."""
 
-    op: Literal["+", "-", "*", "/"]
+    op: Literal["+", "-", "*", "/", "^"]
     left: NumExpr
     right: NumExpr
 

@@ -18,15 +18,15 @@ from pathlib import Path
 from types import SimpleNamespace
 from typing import Any
 
-from artiplan.errors import ExitCode, UsageError
+from artiplan.errors import ExitCode, InvalidPlanError, UsageError
 from artiplan.pddl.task import Task
-from artiplan.search.compiled import CompiledTask, compile_task
-from artiplan.search.dynamics import Dynamics, DynamicsConfig, ZenoError
 from artiplan.search.engine import Search, SearchConfig, SearchOutcome, initial_node
 from artiplan.search.heuristic import HeuristicConfig, RateHeuristic
 from artiplan.search.improve import improve
 from artiplan.search.limits import LimitReached, Limits
 from artiplan.search.reachability import prove_unsolvable
+from artiplan.semantics.compiled import CompiledTask, compile_task
+from artiplan.semantics.kernel import Kernel
 from artiplan.semantics.plan import Plan, TimedAction, TimedEvent
 
 
@@ -82,7 +82,6 @@ OPTIONS = {
     "time_weight": "heuristic cost of one second, in actions (default 0.1)",
     "goal_margin": "time [s] a goal wait runs on past the goal boundary (default 0.01)",
     "value_precision": "decimals of values in duplicate detection (default 6)",
-    "fallback_step": "step [s] for non-polynomial dynamics (default 0.1)",
     "validate": "check the plan with artiplan.semantics.validate (default True)",
     "improve": "search on for a shorter plan within an expansion budget (default True)",
 }
@@ -146,7 +145,7 @@ def plan_task(
         result = PlanResult(status, message=str(exc))
     except MemoryError:
         result = PlanResult(PlanStatus.MEMOUT, message="out of memory (MemoryError)")
-    except ZenoError as exc:
+    except InvalidPlanError as exc:
         result = PlanResult(PlanStatus.ERROR, message=str(exc))
     result.stats = {**stats, **result.stats, "total_s": time.perf_counter() - t0}
     return result
@@ -165,7 +164,7 @@ def _plan(
 ) -> PlanResult:
     t = time.perf_counter()
     ct = compile_task(task)
-    dyn = Dynamics(ct, DynamicsConfig(fallback_step=float(options.get("fallback_step", 0.1))))
+    kernel = Kernel(ct)
     stats["compile_s"] = time.perf_counter() - t
     reason = prove_unsolvable(task)
     if reason is not None:
@@ -198,13 +197,13 @@ def _plan(
         for attempt, (weight, damage, per_goal) in enumerate(SCHEDULE, 1):
             heur = RateHeuristic(
                 ct, HeuristicConfig(time_weight=weight or default_weight, damage_cost=damage),
-                dyn.active)
+                kernel.active)
             budget = float("inf") if per_goal is None else per_goal * max(5, len(heur.groups))
-            search = Search(ct, dyn, heur, config, limits.check, accept)
+            search = Search(ct, kernel, heur, config, limits.check, accept)
             stats["attempts"] = attempt
             running[:] = [search]
             try:
-                outcome = search.run(initial_node(ct, dyn), budget)
+                outcome = search.run(initial_node(ct, kernel), budget)
             finally:
                 heuristic_s += heur.seconds
                 running.clear()
@@ -213,7 +212,7 @@ def _plan(
             if outcome.goal is not None or outcome.exhausted:
                 break
     finally:
-        stats.update(dyn.counters)
+        stats.update(kernel.counters)
         stats["search_s"] = time.perf_counter() - t - stats.get("validate_s", 0.0)
         stats["heuristic_s"] = heuristic_s
     assert outcome is not None
@@ -222,7 +221,7 @@ def _plan(
                           "(not a proof: waits stop only at critical times)")
     found, trajectory = checked[0]
     if options.get("improve", True):
-        found, trajectory = _improve(task, ct, dyn, config, limits, found, trajectory, stats,
+        found, trajectory = _improve(task, ct, kernel, config, limits, found, trajectory, stats,
                                      options)
     stats["plan_length"] = len(found.actions)
     stats["makespan"] = found.makespan
@@ -242,7 +241,7 @@ def plan_margins(task: Task, found: Plan, trajectory: Any, event_gap: float) -> 
     (in its values' units, e.g. deg); ``ok`` when both are at least ``event_gap`` and
     ``GOAL_MARGIN_MIN``; otherwise ``note`` says why (e.g. a goal window narrower than the
     margin, or an action the semantics ties to an event)."""
-    from artiplan.semantics.expressions import robustness
+    from artiplan.semantics.walks import robustness
 
     times = [a.time for a in found.actions]
     gaps = [abs(a - e.time) for a in times for e in trajectory.events]
@@ -265,7 +264,7 @@ def plan_margins(task: Task, found: Plan, trajectory: Any, event_gap: float) -> 
 
 
 def _improve(
-    task: Task, ct: CompiledTask, dyn: Dynamics, config: SearchConfig, limits: Limits,
+    task: Task, ct: CompiledTask, kernel: Kernel, config: SearchConfig, limits: Limits,
     first: Plan, trajectory: Any, stats: dict[str, Any], options: dict[str, Any],
 ) -> tuple[Plan, Any]:
     """The anytime phase (:mod:`artiplan.search.improve`): a better validated plan, or ``first``."""
@@ -282,7 +281,7 @@ def _improve(
         return _validate(task, found, stats, limits)
 
     t = time.perf_counter()
-    best, report, extra = improve(ct, dyn, config, limits, first, int(stats.get("expanded", 0)),
+    best, report, extra = improve(ct, kernel, config, limits, first, int(stats.get("expanded", 0)),
                                   lambda outcome: extract_plan(ct, outcome), check)
     stats.update(extra)
     stats["improve_s"] = time.perf_counter() - t - (stats.get("validate_s", 0.0) - validate_before)

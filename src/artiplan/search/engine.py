@@ -25,16 +25,11 @@ import math
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-from artiplan.search.compiled import CompiledTask
-from artiplan.search.dynamics import (
-    Dynamics,
-    EventLog,
-    Values,
-    ZenoError,
-    ceil_grid,
-    grid_after,
-)
+from artiplan.errors import InvalidPlanError
 from artiplan.search.heuristic import Evaluation, RateHeuristic
+from artiplan.search.waits import Waits, ceil_grid, grid_after
+from artiplan.semantics.compiled import CompiledTask
+from artiplan.semantics.kernel import EventLog, Kernel, Values
 from artiplan.tolerances import VAL_EVENT_WINDOW
 
 Op = tuple
@@ -99,12 +94,13 @@ class Search:
     """One search over a compiled task."""
 
     def __init__(
-        self, ct: CompiledTask, dyn: Dynamics, heuristic: RateHeuristic, config: SearchConfig,
+        self, ct: CompiledTask, kernel: Kernel, heuristic: RateHeuristic, config: SearchConfig,
         check_limits: Callable[[], None],
         accept: Callable[[SearchOutcome], bool] = lambda outcome: True,
         prune: Callable[[Node], bool] | None = None,
     ) -> None:
-        self.ct, self.dyn, self.h, self.config = ct, dyn, heuristic, config
+        self.ct, self.kernel, self.h, self.config = ct, kernel, heuristic, config
+        self.waits = Waits(kernel)
         self.check_limits = check_limits
         self.accept = accept
         self.prune = prune  # nodes it returns True for are dropped (the improvement's bound)
@@ -126,13 +122,13 @@ class Search:
         """The node ``op`` leads to from ``parent`` (index ``pi``), or None if inapplicable."""
         try:
             return self._successor(parent, pi, op)
-        except ZenoError:  # an event loop or an event triggered twice: not a valid happening
+        except InvalidPlanError:  # an event loop or an event triggered twice: no happening
             self.stats["invalid"] += 1
             return None
 
     def _successor(self, parent: Node, pi: int, op: Op) -> Node | None:
         log: EventLog = []
-        dyn = self.dyn
+        kernel = self.kernel
         if op[0] == "a":
             at = self._happening(parent, log)
             if at is None:
@@ -143,7 +139,7 @@ class Search:
                 return None
             facts, values = act.effect(facts, values)
             after = len(log)
-            facts, values, active = dyn.settle(t, facts, values, log)
+            facts, values, active = kernel.settle(t, facts, values, log)
             if parent.by_action and facts == self.nodes[parent.parent].facts:
                 # undoes the previous action after only epsilon: pointless (documented pruning)
                 self.stats["undo_pruned"] += 1
@@ -154,17 +150,17 @@ class Search:
             return Node(t, facts, values, ready, pi, op, log, True, active, after,
                         parent.n_actions + 1, last_event_after(parent, log))
         if op[0] == "w":
-            res = dyn.wait_next(parent.time, parent.facts, parent.values, log, parent.active,
-                                self.config.goal_margin, self.ct.goal_comps)
+            res = self.waits.next(parent.time, parent.facts, parent.values, log, parent.active,
+                                  self.config.goal_margin, self.ct.goal_comps)
         else:
             if op[0] == "u":
                 g = self.h.groups[op[1]]
                 fn, comps = g.fn, g.comps
             else:
                 fn, comps = self.ct.goal, self.ct.goal_comps
-            res = dyn.wait_until(parent.time, parent.facts, parent.values, fn, comps, log,
-                                 parent.active, self.config.max_wait_steps,
-                                 self.config.goal_margin)
+            res = self.waits.until(parent.time, parent.facts, parent.values, fn, comps, log,
+                                   parent.active, self.config.max_wait_steps,
+                                   self.config.goal_margin)
         if res is None:
             return None
         t, facts, values, active = res
@@ -178,19 +174,19 @@ class Search:
         previous action, ``event_gap`` after every event), with the settled state and active
         processes there; the events on the way are appended to ``log``. None if events keep
         coming closer than ``event_gap``."""
-        dyn, gap = self.dyn, self.config.event_gap
+        kernel, gap, grid = self.kernel, self.config.event_gap, self.waits.grid
         t0, facts, values, active = node.time, node.facts, node.values, node.active
         t = max(node.time, node.ready)
         if node.last_event + gap > t:
-            t = ceil_grid(node.last_event + gap, dyn.config.grid)
+            t = ceil_grid(node.last_event + gap, grid)
         for _ in range(16):
-            facts, values, _ = dyn.advance(t0, facts, values, t, log, active)
+            facts, values, _ = kernel.advance(t0, facts, values, t, log, active)
             # a happening: events of that instant first, then the action (the validator's order)
-            facts, values, active = dyn.settle(t, facts, values, log)
+            facts, values, active = kernel.settle(t, facts, values, log)
             latest = log[-1][0] if log else -math.inf
             if latest <= t - gap + 1e-9:
                 return t, facts, values, active
-            t0, t = t, ceil_grid(latest + gap, dyn.config.grid)
+            t0, t = t, ceil_grid(latest + gap, grid)
         return None
 
     def _event_follows(self, t: float, values: Values, active: tuple[int, ...]) -> bool:
@@ -199,10 +195,10 @@ class Search:
         gap = self.config.event_gap
         if gap <= 0.0:
             return False
-        flow = self.dyn.flow_of(active, values)
+        flow = self.kernel.flow_of(active, values)
         if not flow.moving:
             return False
-        dt = self.dyn.next_change(values, flow, self.dyn.comps_for(flow, "dynamic"), gap)
+        dt = self.kernel.next_change(values, flow, self.kernel.comps_for(flow, "dynamic"), gap)
         if dt is None:
             return False
         self.stats["gap_pruned"] += 1
@@ -219,7 +215,7 @@ class Search:
         trial: EventLog = []
         try:
             at = self._happening(node, trial)
-        except ZenoError:
+        except InvalidPlanError:
             return None
         if at is None:
             return None
@@ -286,7 +282,7 @@ class Search:
             if ev.h < best_h:
                 best_h = ev.h
                 boost += self.config.boost
-            moving = self.dyn.flow_of(active, node.values).moving
+            moving = self.kernel.flow_of(active, node.values).moving
             for op2, pref in self._operators(node, ev, moving):
                 entry = (ev.h, next(self.counter), ni, op2)
                 heapq.heappush(regular, entry)
@@ -312,10 +308,10 @@ class Search:
         return ops
 
 
-def initial_node(ct: CompiledTask, dyn: Dynamics) -> Node:
+def initial_node(ct: CompiledTask, kernel: Kernel) -> Node:
     """The initial state after the events it triggers at time 0."""
     log: EventLog = []
-    facts, values, active = dyn.settle(0.0, ct.init_facts, ct.init_values, log)
+    facts, values, active = kernel.settle(0.0, ct.init_facts, ct.init_values, log)
     return Node(0.0, facts, values, 0.0, -1, ("init",), log, False, active,
                 last_event=log[-1][0] if log else -math.inf)
 

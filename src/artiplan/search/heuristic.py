@@ -23,15 +23,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 from artiplan.pddl.task import And, Atom, Condition, Not
-from artiplan.search.compiled import (
-    ComparisonTable,
-    CompiledTask,
-    CondFn,
-    Linear,
-    compile_condition,
-    linearize,
-    written_fluents,
-)
 from artiplan.search.intervals import (
     Intervals,
     Jump,
@@ -40,6 +31,14 @@ from artiplan.search.intervals import (
     travel,
 )
 from artiplan.search.sideeffects import SideEffects
+from artiplan.semantics.compiled import (
+    ComparisonTable,
+    CompiledTask,
+    CondFn,
+    compile_condition,
+    written_fluents,
+)
+from artiplan.semantics.walks import Linear, conjuncts, linear
 
 
 @dataclass(frozen=True)
@@ -80,12 +79,6 @@ class Evaluation:
     unsatisfied: int
 
 
-def _conjuncts(cond: Condition) -> list[Condition]:
-    if isinstance(cond, And):
-        return [c for part in cond.parts for c in _conjuncts(part)]
-    return [cond]
-
-
 class RateHeuristic(SideEffects):
     """The rate-aware numeric relaxation over a compiled task."""
 
@@ -108,7 +101,7 @@ class RateHeuristic(SideEffects):
         self._relaxed_actions()
         self.movers: dict[int, list[tuple[int, Linear]]] = {}
         for p in ct.processes:
-            for fluent, lin, _ in p.rates:
+            for fluent, _, lin in p.rates:
                 if lin is not None:
                     self.movers.setdefault(fluent, []).append((p.index, lin))
         self.proc_lits = [self._lits(p.req, p.forb) for p in ct.processes]
@@ -137,8 +130,8 @@ class RateHeuristic(SideEffects):
         by_fluent: dict[int, list[Condition]] = {}
         groups: list[GoalGroup] = []
         comps: ComparisonTable = self.ct.comps
-        for conj in _conjuncts(self.ct.task.goal):
-            fn, used = compile_condition(conj, comps)
+        for conj in conjuncts(self.ct.task.goal):
+            fn, used = compile_condition(conj, comps, self.ct.tol)
             fls = set().union(*(comps.items[c].fluents for c in used)) if used else set()
             if len(fls) == 1 and condition_set(conj, next(iter(fls))) is not None:
                 by_fluent.setdefault(next(iter(fls)), []).append(conj)
@@ -150,7 +143,7 @@ class RateHeuristic(SideEffects):
                 groups.append(GoalGroup(fn, used))
         for fluent in sorted(by_fluent):
             conjs = by_fluent[fluent]
-            fn, used = compile_condition(And(tuple(conjs)), comps)
+            fn, used = compile_condition(And(tuple(conjs)), comps, self.ct.tol)
             target: Intervals = ((-math.inf, math.inf),)
             for c in conjs:
                 s = condition_set(c, fluent)
@@ -205,7 +198,7 @@ class RateHeuristic(SideEffects):
                 continue
             ne = eff.numeric[0]
             trigger = condition_set(ev.precondition, ne.fluent)
-            lin = linearize(ne.expr)
+            lin = linear(ne.expr)
             if trigger is None or lin is None or lin[0]:
                 continue
             k = lin[1]

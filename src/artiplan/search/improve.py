@@ -15,8 +15,7 @@ from collections.abc import Callable
 from dataclasses import dataclass
 from typing import Any
 
-from artiplan.search.compiled import CompiledTask
-from artiplan.search.dynamics import Dynamics, EventLog, ZenoError
+from artiplan.errors import InvalidPlanError
 from artiplan.search.engine import (
     Node,
     Search,
@@ -27,6 +26,8 @@ from artiplan.search.engine import (
 )
 from artiplan.search.heuristic import HeuristicConfig, RateHeuristic
 from artiplan.search.limits import LimitReached, Limits
+from artiplan.semantics.compiled import CompiledTask
+from artiplan.semantics.kernel import EventLog, Kernel
 from artiplan.semantics.plan import Plan
 
 #: Makespans closer than this [s] count as equal (VAL's tolerance is 0.001 s).
@@ -69,7 +70,7 @@ class _Best:
 
 
 def improve(
-    ct: CompiledTask, dyn: Dynamics, config: SearchConfig, limits: Limits, first: Plan,
+    ct: CompiledTask, kernel: Kernel, config: SearchConfig, limits: Limits, first: Plan,
     first_expansions: int, extract: Callable[[SearchOutcome], Plan],
     validate: Callable[[Plan], Any], settings: ImproveConfig = ImproveConfig(),
 ) -> tuple[Plan, Any, dict[str, Any]]:
@@ -106,20 +107,20 @@ def improve(
 
     try:
         stats["improve_probes"] = _probe(
-            Search(ct, dyn, RateHeuristic(ct, HeuristicConfig(), dyn.active), config, check,
+            Search(ct, kernel, RateHeuristic(ct, HeuristicConfig(), kernel.active), config, check,
                    accept, prune), lambda: best.makespan)
         for weight, damage in settings.weights:
             left = budget - stats["improve_expanded"]
             if left <= 0:
                 break
             heur = RateHeuristic(ct, HeuristicConfig(time_weight=weight, damage_cost=damage),
-                                 dyn.active)
-            search = Search(ct, dyn, heur, config, check, accept, prune)
+                                 kernel.active)
+            search = Search(ct, kernel, heur, config, check, accept, prune)
             try:
-                search.run(initial_node(ct, dyn), left)
+                search.run(initial_node(ct, kernel), left)
             finally:
                 stats["improve_expanded"] += int(search.stats["expanded"])
-    except (LimitReached, MemoryError, ZenoError):
+    except (LimitReached, MemoryError, InvalidPlanError):
         stats["improve_cut"] = True
     stats["improve_candidates"] = len(candidates)
     for found in reversed(candidates):  # best first: usually one validation
@@ -137,8 +138,8 @@ def _probe(search: Search, horizon: Callable[[], float]) -> int:
     nearer the base moves the links after it too). Waits stop at ``horizon()`` [s] (the best
     makespan so far). Returns the number of probes.
     """
-    ct, dyn, probes = search.ct, search.dyn, 0
-    root = initial_node(ct, dyn)
+    ct, probes = search.ct, 0
+    root = initial_node(ct, search.kernel)
     search.nodes.append(root)
     for act in ct.actions:
         if act.noop or root.facts & act.forb or act.req & ~root.facts:
@@ -151,10 +152,11 @@ def _probe(search: Search, horizon: Callable[[], float]) -> int:
         search.nodes.append(child)
         log: EventLog = []
         try:
-            res = dyn.wait_until(child.time, child.facts, child.values, ct.goal, ct.goal_comps,
+            res = search.waits.until(child.time, child.facts, child.values, ct.goal,
+                                     ct.goal_comps,
                                  log, child.active, search.config.max_wait_steps,
                                  search.config.goal_margin, horizon=horizon())
-        except ZenoError:
+        except InvalidPlanError:
             continue
         if res is None:
             continue

@@ -11,7 +11,7 @@ import math
 from dataclasses import dataclass
 
 from artiplan.pddl.task import And, BinOp, Comparison, Condition, Not, Or, Truth
-from artiplan.search.compiled import linearize
+from artiplan.semantics.walks import linear
 
 Intervals = tuple[tuple[float, float], ...]
 EVERYTHING: Intervals = ((-math.inf, math.inf),)
@@ -71,7 +71,7 @@ def condition_set(cond: Condition, fluent: int) -> Intervals | None:
         return acc
     if not isinstance(cond, Comparison):
         return None
-    lin = linearize(BinOp("-", cond.left, cond.right))
+    lin = linear(BinOp("-", cond.left, cond.right))
     if lin is None or set(lin[0]) != {fluent}:
         return None
     a, b = lin[0][fluent], lin[1]

@@ -29,7 +29,8 @@ from artiplan.pddl.task import (
     Task,
     Truth,
 )
-from artiplan.search.compiled import fact_literals, fluents_of, linearize
+from artiplan.semantics.compiled import fact_literals
+from artiplan.semantics.walks import fluents_of, linear
 
 Interval = tuple[float, float]
 
@@ -105,14 +106,14 @@ def fluent_bounds(task: Task) -> tuple[list[Interval], set[int], set[int]]:
             if True not in _possible(proc.precondition, bounds, pos, neg):
                 continue
             for ce in proc.continuous:
-                lin = linearize(ce.rate)
+                lin = linear(ce.rate)
                 sign = (lin[1] > 0) - (lin[1] < 0) if lin is not None and not lin[0] else 2
                 changed |= _widen(bounds, ce.fluent, sign)
         for op in ops:
             if True not in _possible(op.precondition, bounds, pos, neg):
                 continue
             for ne in _numeric_effects(op.effect):
-                lin = linearize(ne.expr)
+                lin = linear(ne.expr)
                 const = lin[1] if lin is not None and not lin[0] else None
                 if ne.op == "assign" and const is not None:
                     lo, hi = bounds[ne.fluent]
@@ -169,7 +170,7 @@ def _possible(cond: Condition, b: list[Interval], pos: set[int], neg: set[int]) 
 
 
 def _comparison_possible(cond: Comparison, b: list[Interval]) -> set[bool]:
-    lin = linearize(BinOp("-", cond.left, cond.right))
+    lin = linear(BinOp("-", cond.left, cond.right))
     if lin is None:
         return {True, False}
     lo = hi = lin[1]
@@ -219,4 +220,4 @@ def _show(cond: Condition, task: Task) -> str:
 
 
 def _fluents(cond: Comparison) -> set[int]:
-    return fluents_of(cond.left) | fluents_of(cond.right)
+    return set(fluents_of(cond.left) | fluents_of(cond.right))

@@ -9,8 +9,9 @@ from __future__ import annotations
 
 from collections.abc import Callable
 
-from artiplan.search.compiled import CompiledTask, Linear
 from artiplan.search.intervals import Jump, contains, displace
+from artiplan.semantics.compiled import CompiledTask
+from artiplan.semantics.walks import Linear
 
 Moves = tuple[tuple[int, tuple[Linear, ...]], ...]
 
@@ -46,7 +47,7 @@ class SideEffects:
         for p in self.ct.processes:
             key = (p.req & -p.req).bit_length() - 1 if p.req else -1 - p.index
             self.proc_key.append(key)
-            for fluent, lin, _ in p.rates:
+            for fluent, _, lin in p.rates:
                 if lin is not None and fluent in self.goal_of_fluent:
                     moves.setdefault(key, {}).setdefault(fluent, []).append(lin)
         self.key_moves: dict[int, tuple[tuple[int, tuple[Linear, ...]], ...]] = {
@@ -98,7 +99,7 @@ class SideEffects:
         if found is None:
             moves: dict[int, list[Linear]] = {}
             for p in active:
-                for fluent, lin, _ in self.ct.processes[p].rates:
+                for fluent, _, lin in self.ct.processes[p].rates:
                     if lin is not None and fluent in self.goal_of_fluent:
                         moves.setdefault(fluent, []).append(lin)
             found = tuple((f, tuple(ls)) for f, ls in sorted(moves.items()))

@@ -5,7 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 from artiplan.pddl.task import Effect, GroundAction
-from artiplan.semantics.expressions import condition_parts, expr_fluents
+from artiplan.semantics.walks import condition_parts, fluents_of
 
 
 @dataclass(frozen=True)
@@ -33,7 +33,7 @@ def footprint(action: GroundAction) -> Footprint:
         adds.update(e.add)
         dels.update(e.delete)
         for ne in e.numeric:
-            expr_fluents(ne.expr, rn)
+            rn |= fluents_of(ne.expr)
             (additive if ne.op in ("increase", "decrease") else assigned).add(ne.fluent)
             if ne.op not in ("increase", "decrease", "assign"):
                 rn.add(ne.fluent)  # scaling reads the old value

@@ -11,8 +11,8 @@ from pathlib import Path
 from typing import Literal
 
 from artiplan.pddl.task import fluent_column
+from artiplan.semantics.kernel import Segment
 from artiplan.semantics.plan import TimedEvent
-from artiplan.semantics.simulator import Segment
 from artiplan.semantics.state import State
 
 RowKind = Literal["init", "action", "event", "sample"]
@@ -76,9 +76,8 @@ class Trajectory:
         starts = [s.t0 for s in self.segments]
         k = bisect.bisect_right(starts, t) - 1
         if k < 0:
-            return self.rows[0].values if self.rows else self.segments[0].flow.values_at(0.0)
-        seg = self.segments[k]
-        return seg.flow.values_at(t - seg.t0)
+            return self.rows[0].values if self.rows else self.segments[0].start
+        return self.segments[k].values_at(t)
 
     def value(self, fluent: str, t: float) -> float:
         """One fluent at time ``t`` [s]."""

@@ -1,28 +1,25 @@
-"""Simulating and validating timed plans with VAL's semantics (shared/docs/stack.md).
+"""Simulating and validating timed plans with VAL's semantics: the kernel plus diagnostics.
 
-What is implemented, exactly:
+What is checked, exactly (the kernel, :mod:`artiplan.semantics.kernel`, does the dynamics):
 
-* Actions are grouped into happenings by their time rounded to 1e-6 s (plans carry 6 decimals).
-  Actions of one happening are applied in parallel (``happenings``): all preconditions read in
-  the state just before it (after the events of that instant), then all effects together.
+* Actions are grouped into happenings by their time rounded to 1e-6 s (plans carry 6 decimals)
+  and applied in parallel: all preconditions read in the state just before the happening
+  (after the events of that instant), then all effects together.
 * Mutex: two actions of one happening that interfere make the plan invalid; so do two actions
   of different happenings less than ``tolerance`` apart (``|t1 - t2| < tolerance - 1e-9``; so
-  0.001 apart with tolerance 0.001 is fine). Interfere = one writes a fact or fluent the other
-  reads (precondition, effect condition, right-hand side), or one adds what the other deletes,
-  or both write one fluent, unless both only increase/decrease it (commutative).
-* Between happenings time passes exactly (``simulator.advance``): events fire at the exact
-  earliest instant their precondition holds, before the actions of that instant; events cascade;
-  an event triggered twice at one instant makes the plan invalid.
-* Comparisons are read with :data:`VAL_TOLERANCES`: strict ones with VAL's slack 1e-4
-  (``x > c`` iff ``x - c > -0.0001``), the others with 1e-9 rounding slack. This applies to
-  preconditions, the goal and event triggers (so an event that puts a value exactly on another
-  event's strict boundary bounces, as in VAL).
+  0.001 apart with tolerance 0.001 is fine). Interfere: one writes a fact or fluent the other
+  reads, or one adds what the other deletes, or both write one fluent (unless both only
+  increase/decrease it).
+* Time passes exactly between happenings; events fire at the exact earliest instant their
+  precondition holds, before the actions of that instant; events cascade; an event triggered
+  twice at one instant makes the plan invalid.
+* Comparisons are read with the tolerances (VAL's: slack 1e-4 on every comparison) in
+  preconditions, the goal, event triggers and conditions of conditional effects.
 * The goal is checked once, in the state after the last happening (and its events).
 * An initial state in which an event's precondition holds is refused (VAL: "Event
   preconditions are not permitted to be satisfied in the initial state"), unless the caller
   accepts it (``initial_events=True``: the events fire at time 0).
 * An action the task does not know (or an event written as an action) is "bad operator".
-* Undefined fluents read by a failed condition are reported as ``nan``.
 """
 
 from __future__ import annotations
@@ -33,23 +30,14 @@ from dataclasses import dataclass, field
 from artiplan.errors import InvalidPlanError
 from artiplan.pddl.task import Condition, GroundAction, Task
 from artiplan.semantics.cache import per_task
-from artiplan.semantics.dynamics import DEFAULT_FLOW, Flow, FlowConfig
-from artiplan.semantics.expressions import (
-    VAL_TOLERANCES,
-    CondFn,
-    Tolerances,
-    compile_condition,
-    fluent_values,
-    format_condition,
-    holds_values,
-    unsatisfied_parts,
-)
-from artiplan.semantics.happenings import EventError, apply_actions, fire_events
+from artiplan.semantics.compiled import CompiledTask, Operator, compile_task
 from artiplan.semantics.interference import interferes
+from artiplan.semantics.kernel import EventError, EventLog, Kernel, Segment
 from artiplan.semantics.plan import Plan, TimedAction, TimedEvent
-from artiplan.semantics.simulator import Segment, advance
-from artiplan.semantics.state import State, initial_state
+from artiplan.semantics.state import State
 from artiplan.semantics.trajectory import Trajectory, TrajectoryRow
+from artiplan.semantics.walks import fluent_values, format_condition, holds, unsatisfied_parts
+from artiplan.tolerances import VAL, VAL_TIME_TOLERANCE, Tolerances
 
 
 @dataclass
@@ -97,14 +85,15 @@ def _key(signature: str) -> str:
     return " ".join(signature.lower().replace("(", " ").replace(")", " ").split())
 
 
-def _action_table(task: Task) -> dict[str, GroundAction]:
-    return {_key(a.signature): a for a in task.actions}
-
-
 def resolve(task: Task, action: TimedAction) -> GroundAction | None:
     """The ground action a plan line names (case-insensitive), or None."""
-    table = per_task(task, "action-table", lambda: _action_table(task))
-    return table.get(_key(action.signature))
+    index = _action_index(task).get(_key(action.signature))
+    return None if index is None else task.actions[index]
+
+
+def _action_index(task: Task) -> dict[str, int]:
+    return per_task(task, "action-index",
+                    lambda: {_key(a.signature): i for i, a in enumerate(task.actions)})
 
 
 def _groups(plan: Plan) -> list[tuple[float, list[TimedAction]]]:
@@ -120,81 +109,124 @@ class _Failure(Exception):
 
 
 def _fail(kind: str, reason: str, happening: int, time: float, **kw: object) -> _Failure:
-    return _Failure(
-        ValidationReport(False, reason, kind, happening, time, **kw)  # type: ignore[arg-type]
-    )
+    return _Failure(ValidationReport(False, reason, kind, happening, time, **kw))  # type: ignore[arg-type]
 
 
-@dataclass(frozen=True)
+@dataclass
 class _Run:
-    task: Task
-    tol: Tolerances
-    config: FlowConfig
+    """One simulation: the kernel, the trajectory being built and the options."""
+
+    ct: CompiledTask
+    kernel: Kernel
+    traj: Trajectory
     tolerance: float
     check: bool
-    tick: Callable[[], None] | None = None
+    tick: Callable[[], None] | None
+
+    @property
+    def task(self) -> Task:
+        return self.ct.task
+
+    def record(self, log: EventLog, values_after: Callable[[int], tuple[float, ...]]
+               | tuple[float, ...], after_actions: bool = False) -> None:
+        """The events of ``log`` into the trajectory; rows carry the values after each
+        instant's cascade (``values_after(k)`` for the k-th event, or one tuple for all)."""
+        events = self.ct.events
+        for k, (t, i) in enumerate(log):
+            ev = events[i]
+            values = values_after if isinstance(values_after, tuple) else values_after(k)
+            self.traj.events.append(TimedEvent(t, ev.name, ev.args, after_actions=after_actions))
+            self.traj.rows.append(TrajectoryRow(t, ev.signature, values, "event"))
+
+    def advance(self, t: float, facts: int, values: tuple[float, ...], until: float,
+                active: tuple[int, ...], index: int) -> tuple[int, tuple[float, ...],
+                                                          tuple[int, ...]]:
+        log: EventLog = []
+        segments: list[Segment] = []
+        try:
+            facts, values, active = self.kernel.advance(t, facts, values, until, log, active,
+                                                        segments)
+        except EventError as exc:
+            raise _fail("event", str(exc), index, exc.time) from None
+        finally:
+            self.traj.segments.extend(segments)
+        self.record(log, lambda k: _values_at(segments, log[k][0], values))
+        return facts, values, active
 
 
-def _condition_failure(
-    run: _Run, cond: Condition, state: State, what: str, index: int, line: int | None
-) -> _Failure:
-    parts = unsatisfied_parts(cond, state.facts, state.values, run.tol)
+def _values_at(segments: list[Segment], t: float, final: tuple[float, ...]) -> tuple[float, ...]:
+    """Values just after the instant ``t`` (the start of the segment that begins there)."""
+    for seg in segments:
+        if seg.t0 >= t - 1e-12:
+            return seg.start
+    return final
+
+
+def _condition_failure(run: _Run, cond: Condition, facts: int, values: Sequence[float], t: float,
+                       what: str, index: int, line: int | None) -> _Failure:
+    tol = run.ct.tol
+    parts = unsatisfied_parts(cond, facts, values, tol)
     text = " ".join(format_condition(p, run.task) for p in parts)
-    values: dict[str, float] = {}
+    named: dict[str, float] = {}
     for p in parts:
-        values.update(fluent_values(p, run.task, state.values))
-    undefined = [n for n, v in values.items() if v != v]  # nan: never given a value
+        named.update(fluent_values(p, run.task, values))
+    undefined = [n for n, v in named.items() if v != v]  # nan: never given a value
     note = f" (undefined: {', '.join(undefined)})" if undefined else ""
-    return _fail(
-        "goal" if index < 0 else "precondition",
-        f"{what} at time {state.time:.6f}: {text} is false{note}",
-        max(index, 0),
-        state.time,
-        condition=text,
-        values=values,
-        line=line,
-    )
-
-
-def _precondition_fn(run: _Run, action: GroundAction) -> CondFn:
-    return per_task(
-        run.task,
-        ("pre", id(action), run.tol),
-        lambda: compile_condition(action.precondition, run.tol),
-    )
+    return _fail("goal" if index < 0 else "precondition", f"{what} at time {t:.6f}: {text} is "
+                 f"false{note}", max(index, 0), t, condition=text, values=named, line=line)
 
 
 def _check_happening(
-    run: _Run,
-    index: int,
-    state: State,
-    acts: Sequence[tuple[TimedAction, GroundAction]],
-    previous: Sequence[tuple[TimedAction, GroundAction]],
+    run: _Run, index: int, t: float, facts: int, values: tuple[float, ...],
+    acts: Sequence[tuple[TimedAction, Operator]],
+    previous: Sequence[tuple[TimedAction, Operator]],
 ) -> None:
-    for i, (ta, ga) in enumerate(acts):
-        for tb, gb in [*acts[i + 1 :], *previous]:
-            if interferes(ga, gb):
+    for i, (ta, oa) in enumerate(acts):
+        for tb, ob in [*acts[i + 1:], *previous]:
+            if interferes(oa.source, ob.source):
                 raise _fail(
-                    "mutex",
-                    f"mutex violation: {ga.signature} at {ta.time:.6f} and {gb.signature} at "
-                    f"{tb.time:.6f} interfere (separate them by more than {run.tolerance} s)",
-                    index,
-                    ta.time,
-                    line=ta.line,
-                )
-    for ta, ga in acts:
-        if not _precondition_fn(run, ga)(state.facts, state.values):
-            what = f"precondition of {ga.signature} (happening {index})"
-            raise _condition_failure(run, ga.precondition, state, what, index, ta.line)
+                    "mutex", f"mutex violation: {oa.signature} at {ta.time:.6f} and "
+                    f"{ob.signature} at {tb.time:.6f} interfere (separate them by more than "
+                    f"{run.tolerance} s)", index, ta.time, line=ta.line)
+    for ta, op in acts:
+        if facts & op.forb or op.req & ~facts or not op.pre(facts, values):
+            what = f"precondition of {op.signature} (happening {index})"
+            raise _condition_failure(run, op.source.precondition, facts, values, t, what, index,
+                                     ta.line)
+
+
+def _resolve_all(run: _Run, groups: list[tuple[float, list[TimedAction]]]
+                 ) -> list[list[tuple[TimedAction, Operator]]]:
+    """The compiled action of every plan line, per happening; "bad operator" if unknown."""
+    table = _action_index(run.task)
+    resolved = []
+    for index, (t, timed) in enumerate(groups, 1):
+        pairs = []
+        for ta in timed:
+            k = table.get(_key(ta.signature))
+            if k is None:
+                where = f" (plan line {ta.line})" if ta.line else ""
+                raise _fail("bad-operator", f"bad operator {ta.signature} at time {t:.6f}{where}",
+                            index, t, line=ta.line)
+            pairs.append((ta, run.ct.actions[k]))
+        resolved.append(pairs)
+    return resolved
+
+
+def enabled_initial_events(task: Task, tol: Tolerances = VAL) -> list[GroundAction]:
+    """The events whose precondition holds in the initial state (read as VAL reads it)."""
+    ct = compile_task(task, tol)
+    return [e.source for e in ct.events
+            if not ct.init_facts & e.forb and holds(e.source.precondition, ct.init_facts,
+                                                     ct.init_values, tol)]
 
 
 def run_plan(
     task: Task,
     plan: Plan,
     *,
-    tol: Tolerances = VAL_TOLERANCES,
-    config: FlowConfig = DEFAULT_FLOW,
-    tolerance: float = 0.001,
+    tol: Tolerances = VAL,
+    tolerance: float = VAL_TIME_TOLERANCE,
     check: bool = True,
     extend: float = 0.0,
     tick: Callable[[], None] | None = None,
@@ -205,157 +237,100 @@ def run_plan(
     ``extend`` [s]: keep simulating (events included) that long after the plan's end, so the
     trajectory predicts what happens next; the goal is still checked at the plan's end.
     ``tick()`` is called before every happening; what it raises (a caller's time limit) ends
-    the run. ``initial_events``: accept an initial state in which events are enabled (they
-    fire at time 0); VAL refuses such a problem, and so does the check by default.
+    the run. ``initial_events``: accept an initial state in which events are enabled.
     """
-    run = _Run(task, tol, config, tolerance, check, tick)
-    traj = Trajectory(task.fluents)
-    state = initial_state(task)
-    traj.rows.append(TrajectoryRow(0.0, "init", state.values, "init"))
+    ct = compile_task(task, tol)
+    run = _Run(ct, Kernel(ct), Trajectory(task.fluents), tolerance, check, tick)
+    traj = run.traj
+    traj.rows.append(TrajectoryRow(0.0, "init", ct.init_values, "init"))
     report = ValidationReport(True, trajectory=traj, events=traj.events)
     try:
         if check and not initial_events:
-            _check_initial_events(run, state)
-        state, flow = _run_happenings(run, plan, state, traj)
-        traj.final_state = state
-        if check and not holds_values(task.goal, state.facts, state.values, tol):
+            enabled = enabled_initial_events(task, tol)
+            if enabled:
+                names = ", ".join(e.signature for e in enabled[:3])
+                raise _fail("event", f"event preconditions hold in the initial state ({names}"
+                            f"{' ...' if len(enabled) > 3 else ''}): VAL does not allow an "
+                            "event at time 0", 0, 0.0,
+                            condition=format_condition(enabled[0].precondition, task))
+        t, facts, values, active = _run_happenings(run, plan)
+        traj.final_state = State(t, facts, values)
+        if check and not ct.goal(facts, values):
             n = len(_groups(plan))
-            where = (
-                f"the plan's end ({state.time:.6f})" if plan.end else f"the last happening ({n})"
-            )
-            raise _condition_failure(run, task.goal, state, f"goal at {where}", -1, None)
+            where = f"the plan's end ({t:.6f})" if plan.end else f"the last happening ({n})"
+            raise _condition_failure(run, task.goal, facts, values, t, f"goal at {where}", -1,
+                                     None)
         if extend > 0:
-            try:
-                res = advance(
-                    task,
-                    state,
-                    state.time + extend,
-                    tol,
-                    config,
-                    on_event=_on_event(traj),
-                    flow=flow,
-                )
-            except EventError as exc:
-                raise _fail("event", str(exc), len(_groups(plan)) + 1, exc.time) from None
-            traj.segments.extend(res.segments)
-            state, flow = res.state, res.flow  # type: ignore[assignment]
-        traj.segments.append(Segment(state.time, float("inf"), flow))
-        traj.end = state.time
+            after = len(_groups(plan)) + 1
+            facts, values, active = run.advance(t, facts, values, t + extend, active, after)
+            t += extend
+        traj.segments.append(Segment(t, float("inf"), values, run.kernel.flow_of(active, values)))
+        traj.end = t
     except _Failure as f:
         report = f.report
         report.trajectory, report.events = traj, traj.events
     except (InvalidPlanError, ZeroDivisionError) as exc:  # Zeno, unsettled events, x / 0
-        t = traj.rows[-1].time if traj.rows else 0.0
+        at = traj.rows[-1].time if traj.rows else 0.0
         what = "division by zero" if isinstance(exc, ZeroDivisionError) else str(exc)
-        report = ValidationReport(False, f"{what} (after time {t:.6f})", "error", time=t)
+        report = ValidationReport(False, f"{what} (after time {at:.6f})", "error", time=at)
         report.trajectory, report.events = traj, traj.events
     return report
 
 
-def enabled_initial_events(task: Task, tol: Tolerances = VAL_TOLERANCES) -> list[GroundAction]:
-    """The events whose precondition holds in the initial state (read as VAL reads it)."""
-    state = initial_state(task)
-    return [e for e in task.events if holds_values(e.precondition, state.facts, state.values, tol)]
-
-
-def _check_initial_events(run: _Run, state: State) -> None:
-    enabled = enabled_initial_events(run.task, run.tol)
-    if enabled:
-        names = ", ".join(e.signature for e in enabled[:3]) + (" ..." if len(enabled) > 3 else "")
-        raise _fail("event", f"event preconditions hold in the initial state ({names}): VAL "
-                    "does not allow an event at time 0", 0, 0.0,
-                    condition=format_condition(enabled[0].precondition, run.task))
-
-
-def _on_event(
-    traj: Trajectory, after: bool = False
-) -> Callable[[float, GroundAction, State], None]:
-    def cb(t: float, e: GroundAction, s: State) -> None:
-        traj.events.append(TimedEvent(t, e.name, e.args, after_actions=after))
-        traj.rows.append(TrajectoryRow(t, e.signature, s.values, "event"))
-
-    return cb
-
-
-def _resolve_all(
-    task: Task, groups: list[tuple[float, list[TimedAction]]]
-) -> list[list[tuple[TimedAction, GroundAction]]]:
-    """The ground action of every plan line, per happening; "bad operator" if one is unknown."""
-    resolved = []
-    for index, (t, timed) in enumerate(groups, 1):
-        pairs = []
-        for ta in timed:
-            ga = resolve(task, ta)
-            if ga is None:
-                where = f" (plan line {ta.line})" if ta.line else ""
-                reason = f"bad operator {ta.signature} at time {t:.6f}{where}"
-                raise _fail("bad-operator", reason, index, t, line=ta.line)
-            pairs.append((ta, ga))
-        resolved.append(pairs)
-    return resolved
-
-
-def _run_happenings(run: _Run, plan: Plan, state: State, traj: Trajectory) -> tuple[State, Flow]:
-    task = run.task
+def _run_happenings(run: _Run, plan: Plan) -> tuple[float, int, tuple[float, ...],
+                                                    tuple[int, ...]]:
+    """Every happening in turn; returns the time, facts, values and active processes after
+    the last one (or at the plan's explicit end)."""
+    ct, kernel = run.ct, run.kernel
     groups = _groups(plan)
-    resolved = _resolve_all(task, groups)
-    cb, after_cb = _on_event(traj), _on_event(traj, after=True)
-    recent: list[tuple[float, list[tuple[TimedAction, GroundAction]]]] = []
-    flow = None
-    for index, ((t, _), acts) in enumerate(zip(groups, resolved, strict=True), 1):
+    resolved = _resolve_all(run, groups)
+    log: EventLog = []
+    try:
+        facts, values, active = kernel.settle(0.0, ct.init_facts, ct.init_values, log)
+    except EventError as exc:
+        raise _fail("event", str(exc), 0, exc.time) from None
+    run.record(log, values)
+    t = 0.0
+    recent: list[tuple[float, list[tuple[TimedAction, Operator]]]] = []
+    for index, ((at, _), acts) in enumerate(zip(groups, resolved, strict=True), 1):
         if run.tick is not None:
             run.tick()
-        try:
-            res = advance(task, state, t, run.tol, run.config, on_event=cb, flow=flow)
-        except EventError as exc:
-            raise _fail("event", str(exc), index, exc.time) from None
-        traj.segments.extend(res.segments)
-        state = res.state
+        facts, values, active = run.advance(t, facts, values, at, active, index)
+        t = at
         if run.check:
             near = [p for tp, g in recent if t - tp < run.tolerance - 1e-9 for p in g]
-            _check_happening(run, index, state, acts, near)
-        state = apply_actions(task, [g for _, g in acts], state)
-        traj.rows.append(TrajectoryRow(t, " ".join(g.signature for _, g in acts), state.values))
+            _check_happening(run, index, t, facts, values, acts, near)
+        facts, values = kernel.apply([op for _, op in acts], facts, values)
+        run.traj.rows.append(TrajectoryRow(t, " ".join(op.signature for _, op in acts), values))
+        log = []
         try:
-            state, fired, flow = fire_events(task, state, run.tol, run.config)
+            facts, values, active = kernel.settle(t, facts, values, log)
         except EventError as exc:
             raise _fail("event", str(exc), index, exc.time) from None
-        for e in fired:
-            after_cb(t, e, state)
+        run.record(log, values, after_actions=True)
         recent = [*recent[-8:], (t, acts)]
-    last = groups[-1][0] if groups else 0.0
-    if flow is None or (plan.end is not None and plan.end > last + 1e-9):
-        # An empty plan settles the initial state; an explicit end lets time run to it.
-        until = max(last, plan.end or 0.0)
-        try:
-            res = advance(task, state, until, run.tol, run.config, on_event=cb, flow=flow)
-        except EventError as exc:
-            raise _fail("event", str(exc), len(groups) + 1, exc.time) from None
-        traj.segments.extend(res.segments)
-        state, flow = res.state, res.flow
-        if until > last:
-            traj.rows.append(TrajectoryRow(until, "end", state.values))
-    assert flow is not None
-    return state, flow
+    if plan.end is not None and plan.end > t + 1e-9:
+        facts, values, active = run.advance(t, facts, values, plan.end, active, len(groups) + 1)
+        run.traj.rows.append(TrajectoryRow(plan.end, "end", values))
+        t = plan.end
+    return t, facts, values, active
 
 
 def validate(
     task: Task,
     plan: Plan,
-    tolerance: float = 0.001,
+    tolerance: float = VAL_TIME_TOLERANCE,
     *,
-    tol: Tolerances = VAL_TOLERANCES,
-    config: FlowConfig = DEFAULT_FLOW,
+    tol: Tolerances = VAL,
     check: Callable[[], None] | None = None,
     initial_events: bool = False,
 ) -> ValidationReport:
     """Validate ``plan`` against ``task`` with VAL's semantics (module docstring).
 
     ``check()``, if given, is called before every happening (a caller's time limit: what it
-    raises propagates). ``initial_events``: accept events enabled in the initial state (VAL
-    refuses them; see :func:`run_plan`)."""
-    return run_plan(task, plan, tol=tol, config=config, tolerance=tolerance, check=True,
-                    tick=check, initial_events=initial_events)
+    raises propagates). ``initial_events``: accept events enabled in the initial state."""
+    return run_plan(task, plan, tol=tol, tolerance=tolerance, check=True, tick=check,
+                    initial_events=initial_events)
 
 
 def simulate(
@@ -364,15 +339,14 @@ def simulate(
     sample_dt: float | None = None,
     *,
     extend: float = 0.0,
-    tol: Tolerances = VAL_TOLERANCES,
-    config: FlowConfig = DEFAULT_FLOW,
+    tol: Tolerances = VAL,
 ) -> Trajectory:
     """The trajectory of ``plan`` (preconditions and goal not checked).
 
     ``sample_dt`` [s]: add sampled rows; ``extend`` [s]: simulate on after the plan's end.
     Raises InvalidPlanError for an action the task does not know or an event triggered twice.
     """
-    report = run_plan(task, plan, tol=tol, config=config, check=False, extend=extend)
+    report = run_plan(task, plan, tol=tol, check=False, extend=extend)
     if not report.valid:
         raise InvalidPlanError(report.reason)
     traj = report.trajectory

@@ -37,7 +37,7 @@ def _curve(traj: Trajectory, end: float) -> tuple[list[float], list[tuple[float,
         for k in range(n + 1):
             t = seg.t0 + (t1 - seg.t0) * k / n
             times.append(t)
-            values.append(seg.flow.values_at(t - seg.t0))
+            values.append(seg.values_at(t))
         times.append(t1)
         values.append(nan)
     return times, values

@@ -1,0 +1,126 @@
+"""The planner's waits: how long a search node lets time pass, on top of the kernel.
+
+A wait ends on the plan grid (``tol.grid``, the 6 decimals of a plan file), at least one grid
+step after the root that ends it, so the printed plan is the plan that was searched and every
+comparison that became true holds with a margin:
+
+- :meth:`Waits.next` - until just after the next time a watched condition may change;
+- :meth:`Waits.until` - until a condition holds (a goal group, the goal), then ``margin``
+  seconds more while it keeps holding.
+"""
+
+from __future__ import annotations
+
+import math
+
+from artiplan.semantics.compiled import CondFn
+from artiplan.semantics.flow import STILL, Flow
+from artiplan.semantics.kernel import EventLog, Kernel, Values
+
+#: (time [s], facts, values, active processes) at the end of a wait.
+Arrival = tuple[float, int, Values, tuple[int, ...]]
+
+
+def grid_after(t: float, grid: float) -> float:
+    """The first grid time at least one grid step after ``t`` [s]."""
+    return round(math.ceil((t + grid) / grid - 1e-6) * grid, 9)
+
+
+def ceil_grid(t: float, grid: float) -> float:
+    """The first grid time at or after ``t`` [s]."""
+    return round(math.ceil(t / grid - 1e-6) * grid, 9)
+
+
+class Waits:
+    """Waits over one kernel."""
+
+    def __init__(self, kernel: Kernel) -> None:
+        self.kernel = kernel
+        self.grid = kernel.ct.tol.grid
+
+    def next(self, t: float, facts: int, values: Values, log: EventLog, active: tuple[int, ...],
+             margin: float = 0.0, goal_comps: frozenset[int] = frozenset()) -> Arrival | None:
+        """Until just after the next time a watched condition may change truth value.
+
+        When that change makes goal comparisons (``goal_comps``) true, the wait runs on for
+        ``margin`` [s] while they keep holding, so an action there sees them with a margin.
+        """
+        k = self.kernel
+        flow = k.flow_of(active, values)
+        if not flow.moving:
+            return None
+        dt = k.next_change(values, flow, k.comps_for(flow, "watched"))
+        if dt is None or not math.isfinite(dt):
+            return None
+        end = grid_after(t + dt, self.grid)
+        facts2, values2, act = k.advance(t, facts, values, end, log, active)
+        if margin > 0.0 and goal_comps:
+            newly = frozenset(c for c in goal_comps
+                              if not self._holds(c, values) and self._holds(c, values2))
+            if newly:
+                def cond(_f: int, v: Values) -> bool:
+                    return all(self._holds(c, v) for c in newly)
+
+                return self._margin(end, facts2, values2, cond, newly, log, act, margin)
+        return end, facts2, values2, act
+
+    def until(self, t: float, facts: int, values: Values, cond: CondFn,
+              cond_comps: frozenset[int], log: EventLog, active: tuple[int, ...],
+              max_steps: int = 64, margin: float = 0.0,
+              horizon: float = math.inf) -> Arrival | None:
+        """Until ``cond`` holds (then ``margin`` [s] more while it keeps holding), or None.
+
+        Stops at every change of the dynamics or of ``cond``'s comparisons; gives up after
+        ``max_steps`` of them, when nothing moves any more, or past ``horizon`` [s].
+        """
+        k = self.kernel
+        act = active
+        for _ in range(max_steps):
+            flow = k.flow_of(act, values)
+            if not flow.moving:
+                return None
+            dt = k.next_change(values, flow, self._watch(flow, cond_comps))
+            if dt is None or not math.isfinite(dt):
+                return None
+            t_next = grid_after(t + dt, self.grid)
+            if t_next > horizon:
+                return None
+            facts, values, act = k.advance(t, facts, values, t_next, log, act)
+            t = t_next
+            if cond(facts, values):
+                return self._margin(t, facts, values, cond, cond_comps, log, act, margin)
+        return None
+
+    def _holds(self, cid: int, values: Values) -> bool:
+        """Truth of comparison ``cid`` at ``values`` (the task's reading)."""
+        item = self.kernel.ct.comps.items[cid]
+        p = STILL.poly(item, values)
+        if p is None:
+            return False
+        return self.kernel.ct.tol.point(item.op, p[0])
+
+    def _watch(self, flow: Flow, cond_comps: frozenset[int]) -> tuple[int, ...]:
+        items = self.kernel.ct.comps.items
+        own = [c for c in cond_comps if items[c].fluents & flow.changing]
+        return tuple(sorted(set(own) | set(self.kernel.comps_for(flow, "dynamic"))))
+
+    def _margin(self, t: float, facts: int, values: Values, cond: CondFn,
+                cond_comps: frozenset[int], log: EventLog, active: tuple[int, ...],
+                margin: float) -> Arrival:
+        if margin <= 0.0:
+            return t, facts, values, active
+        k = self.kernel
+        flow = k.flow_of(active, values)
+        if not flow.moving:
+            return t, facts, values, active
+        dt = k.next_change(values, flow, self._watch(flow, cond_comps), 2.0 * margin)
+        step = margin if dt is None else min(margin, 0.5 * dt)
+        end = round(math.floor((t + step) / self.grid) * self.grid, 9)
+        if end <= t:
+            return t, facts, values, active
+        trial: EventLog = []
+        f2, v2, a2 = k.advance(t, facts, values, end, trial, active)
+        if not cond(f2, v2):
+            return t, facts, values, active
+        log.extend(trial)
+        return end, f2, v2, a2
