@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from artiplan.search.api import PlanStatus
+from artiplan.semantics.results import PlanStatus
 
 if TYPE_CHECKING:
     from artiplan.semantics.plan import Plan

@@ -15,6 +15,7 @@ import argparse
 import json
 import resource
 import sys
+from collections.abc import Mapping
 from pathlib import Path
 from typing import Any
 
@@ -113,14 +114,14 @@ def _since_start(args: argparse.Namespace) -> float:
     return max(0.0, time.time() - getattr(args, "started_at", time.time()))
 
 
-def _alive(elapsed: float, stats: dict[str, Any]) -> None:
+def _alive(elapsed: float, stats: Mapping[str, Any]) -> None:
     """A progress line of a long search (every few seconds)."""
     keys = ("attempts", "expanded", "generated", "duplicates", "events")
     parts = " ".join(f"{k}={int(stats[k])}" for k in keys if k in stats)
     print(f"artiplan plan: {elapsed:.0f} s {parts}", file=sys.stderr, flush=True)
 
 
-def _progress(status: str, stats: dict[str, Any], message: str) -> None:
+def _progress(status: str, stats: Mapping[str, Any], message: str) -> None:
     keys = ("expanded", "generated", "evaluated", "plan_length", "makespan", "search_s",
             "heuristic_s", "total_s")
     parts = [f"{k}={stats[k]:.4g}" if isinstance(stats[k], float) else f"{k}={stats[k]}"
@@ -128,7 +129,7 @@ def _progress(status: str, stats: dict[str, Any], message: str) -> None:
     print(f"artiplan plan: {status} " + " ".join(parts), file=sys.stderr)
 
 
-def _write_stats(path: Path, status: str, message: str, stats: dict[str, Any]) -> None:
+def _write_stats(path: Path, status: str, message: str, stats: Mapping[str, Any]) -> None:
     doc = {"schema": 1, "status": status, "message": message,
            **{k: v for k, v in stats.items()
               if isinstance(v, (int, float, str, bool, list, dict))}}

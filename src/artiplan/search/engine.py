@@ -2,11 +2,12 @@
 
 A node is a state at a time on the plan grid. Its successors (operators) are:
 
-- ``("a", i)``: apply action ``i`` now, or ``epsilon`` after the previous action if that was
-  less than ``epsilon`` ago (VAL applies same-time actions in parallel), then cascade events;
-- ``("w",)``: wait until the next critical time (a watched comparison may flip);
-- ``("u", g)``: wait until goal group ``g`` holds, plus a small margin if it keeps holding;
-- ``("g",)``: wait until the whole goal holds.
+- :class:`Apply` ``(i)``: apply action ``i`` now, or ``epsilon`` after the previous action if
+  that was less than ``epsilon`` ago (VAL applies same-time actions in parallel), and
+  ``event_gap`` after the last event; then cascade events;
+- :class:`WaitNext`: wait until the next critical time (a watched comparison may flip);
+- :class:`WaitGroup` ``(g)``: wait until goal group ``g`` holds, plus a margin while it holds;
+- :class:`WaitGoal`: wait until the whole goal holds.
 
 Evaluation is lazy (as in Fast Downward's lazy search): successors enter the open lists with
 their parent's value and are computed when popped. Two open lists, all operators and preferred
@@ -26,13 +27,45 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from artiplan.errors import InvalidPlanError
-from artiplan.search.heuristic import Evaluation, RateHeuristic
+from artiplan.search.heuristic import Evaluation, Heuristic
 from artiplan.search.waits import Waits, ceil_grid, grid_after
 from artiplan.semantics.compiled import CompiledTask
 from artiplan.semantics.kernel import EventLog, Kernel, Values
 from artiplan.tolerances import VAL_EVENT_WINDOW
 
-Op = tuple
+
+@dataclass(frozen=True, slots=True)
+class Apply:
+    """Apply action ``action`` now (``epsilon`` after the previous one, ``event_gap`` after
+    the last event)."""
+
+    action: int
+
+
+@dataclass(frozen=True, slots=True)
+class WaitNext:
+    """Wait until just after the next time a watched condition may change."""
+
+
+@dataclass(frozen=True, slots=True)
+class WaitGroup:
+    """Wait until goal group ``group`` holds (plus the goal margin)."""
+
+    group: int
+
+
+@dataclass(frozen=True, slots=True)
+class WaitGoal:
+    """Wait until the whole goal holds (plus the goal margin)."""
+
+
+@dataclass(frozen=True, slots=True)
+class Start:
+    """How the initial node is reached."""
+
+
+Op = Apply | WaitNext | WaitGroup | WaitGoal | Start
+WAIT_NEXT, WAIT_GOAL, START = WaitNext(), WaitGoal(), Start()
 
 
 @dataclass(frozen=True)
@@ -94,7 +127,7 @@ class Search:
     """One search over a compiled task."""
 
     def __init__(
-        self, ct: CompiledTask, kernel: Kernel, heuristic: RateHeuristic, config: SearchConfig,
+        self, ct: CompiledTask, kernel: Kernel, heuristic: Heuristic, config: SearchConfig,
         check_limits: Callable[[], None],
         accept: Callable[[SearchOutcome], bool] = lambda outcome: True,
         prune: Callable[[Node], bool] | None = None,
@@ -105,6 +138,9 @@ class Search:
         self.accept = accept
         self.prune = prune  # nodes it returns True for are dropped (the improvement's bound)
         self.noops = [a.index for a in ct.actions if a.noop]
+        # the operators, built once (heap entries hold them)
+        self.applies = [Apply(a.index) for a in ct.actions]
+        self.group_waits = [WaitGroup(g) for g in range(len(heuristic.groups))]
         self.nodes: list[Node] = []
         self.seen: set[tuple[int, tuple[int, ...], tuple[float | None, ...]]] = set()
         self.counter = itertools.count()
@@ -129,12 +165,12 @@ class Search:
     def _successor(self, parent: Node, pi: int, op: Op) -> Node | None:
         log: EventLog = []
         kernel = self.kernel
-        if op[0] == "a":
+        if isinstance(op, Apply):
             at = self._happening(parent, log)
             if at is None:
                 return None
             t, facts, values, _ = at
-            act = self.ct.actions[op[1]]
+            act = self.ct.actions[op.action]
             if facts & act.forb or not act.pre(facts, values):
                 return None
             facts, values = act.effect(facts, values)
@@ -149,12 +185,12 @@ class Search:
             ready = round(t + self.config.epsilon, 9)
             return Node(t, facts, values, ready, pi, op, log, True, active, after,
                         parent.n_actions + 1, last_event_after(parent, log))
-        if op[0] == "w":
+        if isinstance(op, WaitNext):
             res = self.waits.next(parent.time, parent.facts, parent.values, log, parent.active,
                                   self.config.goal_margin, self.ct.goal_comps)
         else:
-            if op[0] == "u":
-                g = self.h.groups[op[1]]
+            if isinstance(op, WaitGroup):
+                g = self.h.groups[op.group]
                 fn, comps = g.fn, g.comps
             else:
                 fn, comps = self.ct.goal, self.ct.goal_comps
@@ -238,7 +274,7 @@ class Search:
         boost = 0
         best_h = float("inf")
         pop_preferred = True
-        pending: list[tuple[int, Op]] = [(-1, ("root",))]
+        pending: list[tuple[int, Op]] = [(-1, START)]
         while True:
             self.check_limits()
             if self.stats["expanded"] >= max_expansions:
@@ -295,16 +331,16 @@ class Search:
         ops: list[tuple[Op, bool]] = []
         if moving:
             if not ev.actions_needed and ev.unsatisfied:
-                ops.append((("g",), True))
-            ops.extend((("u", gi), True) for gi in ev.waits)
+                ops.append((WAIT_GOAL, True))
+            ops.extend((self.group_waits[gi], True) for gi in ev.waits)
         pref = set(ev.preferred)
-        ops.extend((("a", i), True) for i in ev.preferred)
+        ops.extend((self.applies[i], True) for i in ev.preferred)
         if moving:
-            ops.append((("w",), False))
+            ops.append((WAIT_NEXT, False))
         for a in self.ct.actions:
             if a.index in pref or a.noop or node.facts & a.forb or a.req & ~node.facts:
                 continue
-            ops.append((("a", a.index), False))
+            ops.append((self.applies[a.index], False))
         return ops
 
 
@@ -312,7 +348,7 @@ def initial_node(ct: CompiledTask, kernel: Kernel) -> Node:
     """The initial state after the events it triggers at time 0."""
     log: EventLog = []
     facts, values, active = kernel.settle(0.0, ct.init_facts, ct.init_values, log)
-    return Node(0.0, facts, values, 0.0, -1, ("init",), log, False, active,
+    return Node(0.0, facts, values, 0.0, -1, START, log, False, active,
                 last_event=log[-1][0] if log else -math.inf)
 
 

@@ -21,6 +21,7 @@ import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass
+from typing import Protocol
 
 from artiplan.pddl.task import And, Atom, Condition, Not
 from artiplan.search.intervals import (
@@ -66,6 +67,21 @@ class GoalGroup:
     fluent: int | None = None
     target: Intervals = ()
     literal: int | None = None
+
+
+class Heuristic(Protocol):
+    """What the search asks of a heuristic (another one plugs in through
+    ``PlannerConfig.heuristic``, as in pyperplan)."""
+
+    #: The goal's groups; the search's group waits (``WaitGroup``) refer to them by index.
+    groups: list[GoalGroup]
+    #: Time spent evaluating [s].
+    seconds: float
+
+    def evaluate(self, facts: int, values: tuple[float, ...],
+                 active: tuple[int, ...]) -> Evaluation:
+        """The value of a state whose running processes are ``active``."""
+        ...
 
 
 @dataclass(frozen=True)

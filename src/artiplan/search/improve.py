@@ -13,10 +13,10 @@ from __future__ import annotations
 
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
 
 from artiplan.errors import InvalidPlanError
 from artiplan.search.engine import (
+    WAIT_GOAL,
     Node,
     Search,
     SearchConfig,
@@ -24,11 +24,13 @@ from artiplan.search.engine import (
     initial_node,
     last_event_after,
 )
-from artiplan.search.heuristic import HeuristicConfig, RateHeuristic
+from artiplan.search.heuristic import Heuristic, HeuristicConfig, RateHeuristic
 from artiplan.search.limits import LimitReached, Limits
 from artiplan.semantics.compiled import CompiledTask
 from artiplan.semantics.kernel import EventLog, Kernel
 from artiplan.semantics.plan import Plan
+from artiplan.semantics.results import PlanStats
+from artiplan.semantics.validator import ValidationReport
 
 #: Makespans closer than this [s] count as equal (VAL's tolerance is 0.001 s).
 TIE = 1e-6
@@ -71,19 +73,21 @@ class _Best:
 
 def improve(
     ct: CompiledTask, kernel: Kernel, config: SearchConfig, limits: Limits, first: Plan,
-    first_expansions: int, extract: Callable[[SearchOutcome], Plan],
-    validate: Callable[[Plan], Any], settings: ImproveConfig = ImproveConfig(),
-) -> tuple[Plan, Any, dict[str, Any]]:
-    """Search for a plan better than ``first``; returns (plan, validator report or None, stats).
+    stats: PlanStats, extract: Callable[[SearchOutcome], Plan],
+    validate: Callable[[Plan], ValidationReport | None], settings: ImproveConfig = ImproveConfig(),
+    heuristic: Callable[..., Heuristic] = RateHeuristic,
+) -> tuple[Plan, ValidationReport | None]:
+    """Search for a plan better than ``first``; returns it with its validator report (None
+    when ``first`` is kept: the caller validated it already). The ``improve_*`` statistics
+    go to ``stats`` (the first search's ``expanded`` there sets the budget).
 
-    The report is None when ``first`` is kept (the caller validated it already).
-    ``validate(plan)`` returns an object with ``valid`` (and ``trajectory``), or None when
-    validation is off (candidates are then trusted, as the first plan was).
+    ``validate(plan)`` returns a report, or None when validation is off (candidates are then
+    trusted, as the first plan was).
     """
-    budget = int(min(settings.maximum, max(settings.minimum, settings.factor * first_expansions)))
+    budget = int(min(settings.maximum, max(settings.minimum, settings.factor * stats.expanded)))
     best = _Best(first.makespan, len(first.actions))
     candidates: list[Plan] = []
-    stats: dict[str, Any] = {"improve_budget": budget, "improve_expanded": 0}
+    stats.improve_budget, stats.improve_expanded = budget, 0
 
     def prune(node: Node) -> bool:
         """No descendant can be better: times only grow, action counts too."""
@@ -106,29 +110,29 @@ def improve(
             raise LimitReached("time", "improvement stopped by the time limit")
 
     try:
-        stats["improve_probes"] = _probe(
-            Search(ct, kernel, RateHeuristic(ct, HeuristicConfig(), kernel.active), config, check,
+        stats.improve_probes = _probe(
+            Search(ct, kernel, heuristic(ct, HeuristicConfig(), kernel.active), config, check,
                    accept, prune), lambda: best.makespan)
         for weight, damage in settings.weights:
-            left = budget - stats["improve_expanded"]
+            left = budget - stats.improve_expanded
             if left <= 0:
                 break
-            heur = RateHeuristic(ct, HeuristicConfig(time_weight=weight, damage_cost=damage),
-                                 kernel.active)
+            heur = heuristic(ct, HeuristicConfig(time_weight=weight, damage_cost=damage),
+                             kernel.active)
             search = Search(ct, kernel, heur, config, check, accept, prune)
             try:
                 search.run(initial_node(ct, kernel), left)
             finally:
-                stats["improve_expanded"] += int(search.stats["expanded"])
+                stats.improve_expanded += int(search.stats["expanded"])
     except (LimitReached, MemoryError, InvalidPlanError):
-        stats["improve_cut"] = True
-    stats["improve_candidates"] = len(candidates)
+        stats.improve_cut = True
+    stats.improve_candidates = len(candidates)
     for found in reversed(candidates):  # best first: usually one validation
         report = validate(found)
         if report is None or report.valid:
-            return found, report, stats
-        stats.setdefault("improve_rejected", []).append(report.reason)
-    return first, None, stats
+            return found, report
+        stats.improve_rejected.append(report.reason)
+    return first, None
 
 
 def _probe(search: Search, horizon: Callable[[], float]) -> int:
@@ -146,7 +150,7 @@ def _probe(search: Search, horizon: Callable[[], float]) -> int:
             continue
         search.check_limits()
         probes += 1
-        child = search.successor(root, 0, ("a", act.index))
+        child = search.successor(root, 0, search.applies[act.index])
         if child is None or search.prune is not None and search.prune(child):
             continue
         search.nodes.append(child)
@@ -161,7 +165,7 @@ def _probe(search: Search, horizon: Callable[[], float]) -> int:
         if res is None:
             continue
         t, facts, values, active = res
-        search.nodes.append(Node(t, facts, values, child.ready, len(search.nodes) - 1, ("g",),
+        search.nodes.append(Node(t, facts, values, child.ready, len(search.nodes) - 1, WAIT_GOAL,
                                  log, False, active, n_actions=child.n_actions,
                                  last_event=last_event_after(child, log)))
         closing = search.closing(search.nodes[-1])

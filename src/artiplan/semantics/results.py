@@ -1,0 +1,174 @@
+"""What a planning call returns, whoever planned: status, plan, trajectory, statistics.
+
+Shared by artiplan's planner (``search``), the external backends (``backends``) and their
+users (``execution``, ``bench``, ``up``), so that none of them imports another for it.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+from collections.abc import Iterator, Mapping
+from dataclasses import dataclass, field
+from enum import Enum
+from typing import Any
+
+from artiplan.errors import ExitCode
+from artiplan.pddl.task import Task
+from artiplan.semantics.plan import Plan
+from artiplan.semantics.trajectory import Trajectory
+from artiplan.semantics.walks import robustness
+
+
+class PlanStatus(Enum):
+    """How a planning call ended."""
+
+    SOLVED = "solved"
+    UNSOLVABLE_PROVEN = "unsolvable"
+    NO_PLAN = "no-plan"
+    TIMEOUT = "timeout"
+    MEMOUT = "memout"
+    ERROR = "error"
+
+    @property
+    def exit_code(self) -> ExitCode:
+        """The command-line exit code (shared/docs/conventions.md)."""
+        return _EXIT[self]
+
+
+_EXIT = {
+    PlanStatus.SOLVED: ExitCode.OK,
+    PlanStatus.UNSOLVABLE_PROVEN: ExitCode.UNSOLVABLE,
+    PlanStatus.NO_PLAN: ExitCode.NO_PLAN,
+    PlanStatus.TIMEOUT: ExitCode.TIME_LIMIT,
+    PlanStatus.MEMOUT: ExitCode.MEMORY_LIMIT,
+    PlanStatus.ERROR: ExitCode.INTERNAL,
+}
+
+#: A goal that holds by less than this at the plan's end [units of its values] has no margin.
+GOAL_MARGIN_MIN = 1e-3
+
+
+@dataclass(frozen=True)
+class Margins:
+    """How robust a validated plan is.
+
+    Attributes:
+        event_gap_s: The closest an action comes to an event [s] (None without events).
+        goal_margin: How far the goal is from failing at the end, in the units of its values
+            (e.g. deg; None when it reads no number).
+        ok: Both at least what the planner aims for (``note`` says what is missing).
+    """
+
+    event_gap_s: float | None
+    goal_margin: float | None
+    ok: bool
+    note: str = ""
+
+
+def margins_of(task: Task, plan: Plan, trajectory: Trajectory, event_gap: float) -> Margins:
+    """The margins of ``plan`` along its ``trajectory``; ``event_gap`` [s]: the gap aimed at."""
+    gaps = [abs(a.time - e.time) for a in plan.actions for e in trajectory.events]
+    gap = min(gaps) if gaps else None
+    final = trajectory.final_state
+    margin = robustness(task.goal, final.facts, final.values) if final is not None else None
+    notes = []
+    if gap is not None and gap < event_gap - 1e-9:
+        notes.append(f"an action {gap:.6f} s from an event (wanted {event_gap:g} s)")
+    if margin is not None and margin < GOAL_MARGIN_MIN:
+        notes.append(f"the goal holds by only {margin:.2g} at the end")
+    return Margins(None if gap is None else round(gap, 6),
+                   None if margin is None or math.isinf(margin) else round(margin, 6),
+                   not notes, "; ".join(notes))
+
+
+@dataclass
+class PlanStats(Mapping[str, Any]):
+    """Counters and timings of a planning call (typed; also readable as a mapping, e.g.
+    ``stats["expanded"]``, for scripts and JSON).
+
+    Counts: ``expanded``, ``generated``, ``evaluated``, ``duplicates``, ``undo_pruned``,
+    ``invalid`` (successors an event loop made impossible), ``rejected`` (goal nodes the
+    validator refused), ``pruned`` (by the improvement's bound), ``gap_pruned`` (actions an
+    event would follow too soon), ``events``, ``boundary_flows``, ``numeric_flows``,
+    ``attempts`` (restarts). Seconds: ``parse_s``, ``ground_s``, ``compile_s``, ``search_s``,
+    ``heuristic_s``, ``validate_s``, ``improve_s``, ``total_s``. The plan: ``plan_length``,
+    ``makespan`` [s], ``validated``, ``margins``. The improvement phase: ``improve_*``,
+    ``first_makespan``, ``first_length``.
+    """
+
+    expanded: int = 0
+    generated: int = 0
+    evaluated: int = 0
+    duplicates: int = 0
+    undo_pruned: int = 0
+    invalid: int = 0
+    rejected: int = 0
+    pruned: int = 0
+    gap_pruned: int = 0
+    events: int = 0
+    boundary_flows: int = 0
+    numeric_flows: int = 0
+    attempts: int = 0
+    parse_s: float = 0.0
+    ground_s: float = 0.0
+    compile_s: float = 0.0
+    search_s: float = 0.0
+    heuristic_s: float = 0.0
+    validate_s: float = 0.0
+    improve_s: float = 0.0
+    total_s: float = 0.0
+    plan_length: int | None = None
+    makespan: float | None = None
+    validated: bool = False
+    margins: Margins | None = None
+    initial_events: list[str] = field(default_factory=list)
+    rejected_reasons: list[str] = field(default_factory=list)
+    improve_budget: int = 0
+    improve_expanded: int = 0
+    improve_probes: int = 0
+    improve_candidates: int = 0
+    improve_cut: bool = False
+    improve_rejected: list[str] = field(default_factory=list)
+    first_makespan: float | None = None
+    first_length: int | None = None
+
+    def add(self, counts: Mapping[str, float]) -> None:
+        """Add counters (a search's, the kernel's) to the fields of the same name."""
+        for k, v in counts.items():
+            setattr(self, k, getattr(self, k) + v)
+
+    def as_dict(self) -> dict[str, Any]:
+        """Every field, JSON-ready (``margins`` as a dict)."""
+        return dataclasses.asdict(self)
+
+    def __getitem__(self, key: str) -> Any:
+        if key not in self.__dataclass_fields__:
+            raise KeyError(key)
+        value = getattr(self, key)
+        return dataclasses.asdict(value) if isinstance(value, Margins) else value
+
+    def __iter__(self) -> Iterator[str]:
+        return iter(self.__dataclass_fields__)
+
+    def __len__(self) -> int:
+        return len(self.__dataclass_fields__)
+
+
+@dataclass
+class PlanResult:
+    """The outcome of planning.
+
+    Attributes:
+        status: How the call ended.
+        plan: The validated plan (only when ``SOLVED``), events included as predicted.
+        trajectory: The validator's trajectory of the plan, if solved.
+        stats: Counters and timings.
+        message: Why, in one line, when not solved (the proof, the limit, the error).
+    """
+
+    status: PlanStatus
+    plan: Plan | None = None
+    trajectory: Trajectory | None = None
+    stats: PlanStats = field(default_factory=PlanStats)
+    message: str = ""
