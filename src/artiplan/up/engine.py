@@ -129,25 +129,67 @@ class ArtiplanEngine(Engine, OneshotPlannerMixin, PlanValidatorMixin):
         return bool(optimality_guarantee == OptimalityGuarantee.SATISFICING)
 
     @staticmethod
-    def get_credits(**kwargs: Any) -> Credits:
-        return CREDITS
+    def get_credits(**kwargs: Any) -> Credits | None:
+        """The credits, when the environment prints them (unified-planning inspects the call
+        stack before it looks at the stream: a few ms a call, skipped when nothing prints)."""
+        from unified_planning.environment import get_environment
 
-    def _solve(
+        return CREDITS if get_environment().credits_stream is not None else None
+
+    # unified-planning's solve() and validate() compute problem.kind for their check and then
+    # call _solve/_validate, which need it again (to write PDDL+). These do the same checks with
+    # one computation of the kind; _solve and _validate remain for callers that use them.
+    def solve(
         self, problem: Any, heuristic: Any = None, timeout: float | None = None,
-        output_stream: IO[str] | None = None,
+        output_stream: IO[str] | None = None, warm_start_plan: Any = None, **kwargs: Any,
+    ) -> Any:
+        kind = self._checked_kind(problem, "solve")
+        if not kind.has_quality_metrics() and self.optimality_metric_required:
+            raise UPUsageError("The problem has no quality metrics but the engine is required "
+                               "to be optimal!")
+        return self._plan(problem, kind, heuristic, timeout, output_stream)
+
+    def validate(self, problem: Any, plan: Any) -> Any:
+        kind = self._checked_kind(problem, "validate")
+        if not self.skip_checks and not self.supports_plan(plan.kind):
+            self._failed_check(f"{self.name} cannot validate this kind of plan!")
+        return check(self.name, problem, plan, self._validator_settings(), kind)
+
+    def _checked_kind(self, problem: Any, what: str) -> Any:
+        kind = problem.kind
+        if not self.skip_checks and not self.supports(kind):
+            self._failed_check(f"We cannot establish whether {self.name} can {what} this "
+                               "problem!")
+        return kind
+
+    def _failed_check(self, message: str) -> None:
+        if self.error_on_failed_checks:
+            raise UPUsageError(message)
+        warnings.warn(message, stacklevel=4)
+
+    def _plan(
+        self, problem: Any, kind: Any, heuristic: Any, timeout: float | None,
+        output_stream: IO[str] | None,
     ) -> Any:
         if heuristic is not None:
             warnings.warn("artiplan ignores the heuristic argument: it uses its own", stacklevel=3)
         settings = self._planner
         if self.skip_checks:
             settings = PlannerSettings(settings.memory_limit, settings.options, False)
-        return solve(self.name, problem, timeout, settings, output_stream)
+        return solve(self.name, problem, timeout, settings, output_stream, kind)
+
+    def _validator_settings(self) -> ValidatorSettings:
+        v = self._validator
+        return ValidatorSettings(v.end, v.tolerance, v.horizon, False) if self.skip_checks else v
+
+    def _solve(
+        self, problem: Any, heuristic: Any = None, timeout: float | None = None,
+        output_stream: IO[str] | None = None,
+    ) -> Any:
+        return self._plan(problem, problem.kind, heuristic, timeout, output_stream)
 
     def _validate(self, problem: Any, plan: Any) -> Any:
-        settings = self._validator
-        if self.skip_checks:
-            settings = ValidatorSettings(settings.end, settings.tolerance, settings.horizon, False)
-        return check(self.name, problem, plan, settings)
+        return check(self.name, problem, plan, self._validator_settings())
 
 
 __all__ = ["CREDITS", "NAME", "ArtiplanEngine", "parse_params"]

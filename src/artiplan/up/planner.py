@@ -59,11 +59,12 @@ class PlannerSettings:
 
 def solve(
     engine: str, problem: Any, timeout: float | None, settings: PlannerSettings,
-    output_stream: IO[str] | None = None,
+    output_stream: IO[str] | None = None, kind: Any = None,
 ) -> PlanGenerationResult:
-    """Plan for ``problem`` within ``timeout`` [s] (conversion included)."""
+    """Plan for ``problem`` within ``timeout`` [s] (conversion included); ``kind``: the
+    problem's kind, if the caller computed it."""
     t0 = time.perf_counter()
-    kind = problem.kind
+    kind = problem.kind if kind is None else kind
     if settings.check_kind and not supports(kind):
         missing = sorted(kind.features - SUPPORTED_KIND.features)
         return _result(engine, Status.UNSUPPORTED_PROBLEM, t0,

@@ -64,10 +64,12 @@ def end_rule(problem: Any, requested: str) -> str:
     return "last-happening" if has_noop(problem) or not problem.processes else "first-goal"
 
 
-def check(engine: str, problem: Any, plan: Any, settings: ValidatorSettings) -> ValidationResult:
-    """Validate ``plan`` for ``problem``."""
+def check(
+    engine: str, problem: Any, plan: Any, settings: ValidatorSettings, kind: Any = None
+) -> ValidationResult:
+    """Validate ``plan`` for ``problem`` (``kind``: the problem's kind, if computed already)."""
     assert settings.end in END_RULES
-    kind = problem.kind
+    kind = problem.kind if kind is None else kind
     if settings.check_kind and not supports(kind):
         missing = sorted(kind.features - SUPPORTED_KIND.features)
         return _unknown(engine, f"artiplan does not support these features: {', '.join(missing)}")
