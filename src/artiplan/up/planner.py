@@ -101,8 +101,7 @@ def _planned(
     summary = f"artiplan: {result.status.value}" + (f": {result.message}" if result.message else "")
     if stream is not None:
         stream.write(summary + "\n")
-    res = _result(engine, status, t0, summary, metrics, plan)
-    return res
+    return _result(engine, status, t0, summary, metrics, plan)
 
 
 def _result(
