@@ -32,8 +32,12 @@ import time
 from pathlib import Path
 from typing import Any
 
-import artiplan
-import artiplan.up
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+
+from up_validator_agreement import suite_entries  # noqa: E402
+
+import artiplan  # noqa: E402
+import artiplan.up  # noqa: E402
 
 
 def _clock() -> tuple[float, float, float]:
@@ -171,11 +175,7 @@ def main(argv: list[str] | None = None) -> int:
     from unified_planning.shortcuts import get_environment
 
     get_environment().credits_stream = None
-    entries = json.loads((args.suite / "suite.json").read_text())["problems"]
-    only = set(filter(None, args.only.split(",")))
-    sizes = {int(s) for s in args.sizes.split(",") if s}
-    entries = [e for e in entries if (not only or e["model"] in only)
-               and (not sizes or e["size"] in sizes)]
+    entries = suite_entries(args.suite, args.only, args.sizes)
     warm = entries[0]
     run_entry(args.suite, warm, argparse.Namespace(**{**vars(args), "enhsp_sizes": set()}), False)
     rows, seen = [], {}

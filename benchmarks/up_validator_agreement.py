@@ -71,6 +71,15 @@ def run_problem(suite: Path, entry: dict, time_limit: float, seed: int, validato
     return rows
 
 
+def suite_entries(suite: Path, only: str = "", sizes: str = "") -> list[dict]:
+    """The problems of ``suite/suite.json``, filtered by models and sizes (comma-separated)."""
+    entries = json.loads((suite / "suite.json").read_text())["problems"]
+    models = set(filter(None, only.split(",")))
+    wanted = {int(s) for s in sizes.split(",") if s}
+    return [e for e in entries if (not models or e["model"] in models)
+            and (not wanted or e["size"] in wanted)]
+
+
 def summary(rows: list[dict]) -> str:
     by: dict[str, Counter] = defaultdict(Counter)
     for r in rows:
@@ -103,11 +112,7 @@ def main(argv: list[str] | None = None) -> int:
     from unified_planning.shortcuts import PlanValidator, get_environment
 
     get_environment().credits_stream = None
-    entries = json.loads((args.suite / "suite.json").read_text())["problems"]
-    only = set(filter(None, args.only.split(",")))
-    sizes = {int(s) for s in args.sizes.split(",") if s}
-    entries = [e for e in entries if (not only or e["model"] in only)
-               and (not sizes or e["size"] in sizes)]
+    entries = suite_entries(args.suite, args.only, args.sizes)
     rows: list[dict] = []
     t0 = time.perf_counter()
     with PlanValidator(name="artiplan") as validator:
