@@ -11,16 +11,15 @@ from __future__ import annotations
 from typing import Any
 
 import pytest
+import unified_planning as up
+from unified_planning.engines import PlanGenerationResultStatus as S
+from unified_planning.engines import ValidationResultStatus as V
+from unified_planning.plans import SequentialPlan, TimeTriggeredPlan
+from unified_planning.shortcuts import OneshotPlanner, PlanValidator
 from up_cases import load_cases
 
 import artiplan.up  # noqa: F401  (registers the engine)
 from artiplan.up.kinds import supports
-
-up = pytest.importorskip("unified_planning")
-from unified_planning.engines import PlanGenerationResultStatus as S  # noqa: E402
-from unified_planning.engines import ValidationResultStatus as V  # noqa: E402
-from unified_planning.plans import SequentialPlan, TimeTriggeredPlan  # noqa: E402
-from unified_planning.shortcuts import OneshotPlanner, PlanValidator  # noqa: E402
 
 up.shortcuts.get_environment().credits_stream = None
 

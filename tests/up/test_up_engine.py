@@ -8,15 +8,11 @@ import time
 from fractions import Fraction
 
 import pytest
-
-import artiplan.up
-from artiplan.up.convert import END_ACTION, to_pddl
-
-up = pytest.importorskip("unified_planning")
-from unified_planning.engines import PlanGenerationResultStatus as S  # noqa: E402
-from unified_planning.engines import ValidationResultStatus as V  # noqa: E402
-from unified_planning.exceptions import UPUsageError  # noqa: E402
-from unified_planning.model import (  # noqa: E402
+import unified_planning as up
+from unified_planning.engines import PlanGenerationResultStatus as S
+from unified_planning.engines import ValidationResultStatus as V
+from unified_planning.exceptions import UPUsageError
+from unified_planning.model import (
     DurativeAction,
     Event,
     Fluent,
@@ -24,7 +20,7 @@ from unified_planning.model import (  # noqa: E402
     Problem,
     Process,
 )
-from unified_planning.shortcuts import (  # noqa: E402
+from unified_planning.shortcuts import (
     GE,
     Equals,
     Not,
@@ -33,6 +29,9 @@ from unified_planning.shortcuts import (  # noqa: E402
     RealType,
     get_environment,
 )
+
+import artiplan.up
+from artiplan.up.convert import END_ACTION, to_pddl
 
 get_environment().credits_stream = None
 

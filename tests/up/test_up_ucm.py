@@ -7,6 +7,10 @@ from pathlib import Path
 
 import pytest
 from ucm_api import ucm_problem
+from unified_planning.engines import PlanGenerationResultStatus as S
+from unified_planning.engines import ValidationResultStatus as V
+from unified_planning.plans import TimeTriggeredPlan
+from unified_planning.shortcuts import OneshotPlanner, PlanValidator, get_environment
 
 import artiplan
 import artiplan.up
@@ -15,12 +19,6 @@ from artiplan.encoding.suite import SUITE_MODELS
 from artiplan.model import PLANES, ArticulatedObject
 from artiplan.pddl import load_task
 from artiplan.semantics import Plan, TimedAction, validate
-
-up = pytest.importorskip("unified_planning")
-from unified_planning.engines import PlanGenerationResultStatus as S  # noqa: E402
-from unified_planning.engines import ValidationResultStatus as V  # noqa: E402
-from unified_planning.plans import TimeTriggeredPlan  # noqa: E402
-from unified_planning.shortcuts import OneshotPlanner, PlanValidator, get_environment  # noqa: E402
 
 get_environment().credits_stream = None
 

@@ -9,6 +9,9 @@ import sys
 from pathlib import Path
 
 import pytest
+import unified_planning as up
+from unified_planning.engines import ValidationResultStatus as V
+from unified_planning.shortcuts import OneshotPlanner, PlanValidator, get_environment
 
 import artiplan
 import artiplan.up
@@ -17,10 +20,6 @@ from artiplan.encoding.suite import SUITE_MODELS
 from artiplan.model import ArticulatedObject
 from artiplan.pddl import load_task
 from artiplan.up.convert import to_pddl, to_up_plan
-
-up = pytest.importorskip("unified_planning")
-from unified_planning.engines import ValidationResultStatus as V  # noqa: E402
-from unified_planning.shortcuts import OneshotPlanner, PlanValidator, get_environment  # noqa: E402
 
 # The mutation generator is a benchmark tool (benchmarks/plan_mutations.py), reused here.
 sys.path.insert(0, str(Path(__file__).resolve().parents[2] / "benchmarks"))
