@@ -14,7 +14,7 @@ $(STAMP): pyproject.toml scripts/setup-system.sh
 	bash scripts/setup-system.sh
 	$(PY) -m venv $(VENV)
 	$(BIN)/pip install -q --upgrade pip
-	$(BIN)/pip install -q -e '.[dev]'
+	$(BIN)/pip install -q -e '.[dev,up]'
 	# robosuite only for its Baxter MJCF assets: never let pip resolve its dependencies.
 	$(BIN)/pip install -q --no-deps 'robosuite==1.5.2'
 	touch $(STAMP)

@@ -21,6 +21,7 @@ LAYERS = [
     "semantics",
     "search",
     "backends",
+    "up",
     "world",
     "execution",
     "bench",

@@ -62,6 +62,19 @@ class Tolerances:
             return diff <= self.slack
         return abs(diff) <= self.slack
 
+    def snapped(self, op: str, diff: float) -> bool:
+        """``left op right`` read exactly, a difference within ``zero`` counting as 0 (so a
+        strict comparison must hold by more than ``zero``): the planner's demand."""
+        if op == ">":
+            return diff > self.zero
+        if op == ">=":
+            return diff >= -self.zero
+        if op == "<":
+            return diff < -self.zero
+        if op == "<=":
+            return diff <= self.zero
+        return abs(diff) <= self.zero
+
     def offset(self, op: str) -> float:
         """``left - right + offset(op) op 0`` is :meth:`point` as a Python comparison (for
         compiled code; ``=`` is ``abs(left - right) <= slack``)."""

@@ -173,7 +173,7 @@ class _Planning:
 
     def solve(self) -> PlanResult:
         t = time.perf_counter()
-        self.ct = compile_task(self.task)
+        self.ct = compile_task(self.task, strict=True)
         self.kernel = Kernel(self.ct)
         self.stats.compile_s = time.perf_counter() - t
         reason = prove_unsolvable(self.task)

@@ -13,9 +13,10 @@ Evaluation is lazy (as in Fast Downward's lazy search): successors enter the ope
 their parent's value and are computed when popped. Two open lists, all operators and preferred
 ones, are popped alternately, with a boost for the preferred list after progress (LAMA). Ties are
 broken by insertion order, so a run is deterministic. Duplicates are detected on the facts and the
-values rounded to ``value_precision``. One pruning: an action applied right after another (no wait
-between) that restores the facts from before that other action is skipped (a start then stop
-that only lets ``epsilon`` pass).
+values rounded to ``value_precision``. One pruning: a fact-only action applied right after
+another (no wait between) that restores the facts from before that other, also fact-only,
+action is skipped (a start then stop that only lets ``epsilon`` pass). Actions that change
+numbers are never pruned this way (two increases in a row are a plan).
 """
 
 from __future__ import annotations
@@ -176,8 +177,10 @@ class Search:
             facts, values = act.effect(facts, values)
             after = len(log)
             facts, values, active = kernel.settle(t, facts, values, log)
-            if parent.by_action and facts == self.nodes[parent.parent].facts:
-                # undoes the previous action after only epsilon: pointless (documented pruning)
+            if parent.by_action and act.facts_only and isinstance(parent.op, Apply) and \
+                    self.ct.actions[parent.op.action].facts_only and \
+                    facts == self.nodes[parent.parent].facts:
+                # undoes the previous fact-only action after only epsilon: pointless
                 self.stats["undo_pruned"] += 1
                 return None
             if self._event_follows(t, values, active):

@@ -147,7 +147,7 @@ class RateHeuristic(SideEffects):
         groups: list[GoalGroup] = []
         comps: ComparisonTable = self.ct.comps
         for conj in conjuncts(self.ct.task.goal):
-            fn, used = compile_condition(conj, comps, self.ct.tol)
+            fn, used = compile_condition(conj, comps, self.ct.tol, snap=self.ct.strict)
             fls = set().union(*(comps.items[c].fluents for c in used)) if used else set()
             if len(fls) == 1 and condition_set(conj, next(iter(fls))) is not None:
                 by_fluent.setdefault(next(iter(fls)), []).append(conj)
@@ -159,7 +159,8 @@ class RateHeuristic(SideEffects):
                 groups.append(GoalGroup(fn, used))
         for fluent in sorted(by_fluent):
             conjs = by_fluent[fluent]
-            fn, used = compile_condition(And(tuple(conjs)), comps, self.ct.tol)
+            fn, used = compile_condition(And(tuple(conjs)), comps, self.ct.tol,
+                                         snap=self.ct.strict)
             target: Intervals = ((-math.inf, math.inf),)
             for c in conjs:
                 s = condition_set(c, fluent)

@@ -92,12 +92,13 @@ class Waits:
         return None
 
     def _holds(self, cid: int, values: Values) -> bool:
-        """Truth of comparison ``cid`` at ``values`` (the task's reading)."""
+        """Truth of goal comparison ``cid`` at ``values`` (as the goal is read)."""
         item = self.kernel.ct.comps.items[cid]
         p = STILL.poly(item, values)
         if p is None:
             return False
-        return self.kernel.ct.tol.point(item.op, p[0])
+        ct = self.kernel.ct
+        return ct.tol.snapped(item.op, p[0]) if ct.strict else ct.tol.point(item.op, p[0])
 
     def _watch(self, flow: Flow, cond_comps: frozenset[int]) -> tuple[int, ...]:
         items = self.kernel.ct.comps.items

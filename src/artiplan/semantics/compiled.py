@@ -86,7 +86,7 @@ class ComparisonTable:
 
 
 def _snapped(op: str, diff: str, zero: float) -> str:
-    """``diff op 0`` with ``|diff| <= zero`` read as exactly 0."""
+    """Source of :meth:`Tolerances.snapped` for ``diff op 0``."""
     return {">": f"({diff} > {zero!r})", ">=": f"({diff} >= {-zero!r})",
             "<": f"({diff} < {-zero!r})", "<=": f"({diff} <= {zero!r})"}.get(
         op, f"(abs({diff}) <= {zero!r})")
@@ -195,6 +195,8 @@ class Operator:
     parts: PartsFn
     noop: bool
     source: GroundAction
+    #: True when the effect changes facts only (no number, conditionally or not)
+    facts_only: bool = False
 
 
 @dataclass(frozen=True)
@@ -236,28 +238,37 @@ class CompiledTask:
     watched: frozenset[int]
     #: per fluent, the watched comparisons that read it
     fluent_comps: dict[int, tuple[int, ...]]
+    #: the goal and action preconditions are read snapped, without the slack (the planner's)
+    strict: bool = False
 
     @property
     def n_fluents(self) -> int:
         return len(self.task.fluents)
 
 
-def _operator(i: int, op: GroundAction, comps: ComparisonTable, tol: Tolerances) -> Operator:
-    pre, used = compile_condition(op.precondition, comps, tol)
+def _operator(i: int, op: GroundAction, comps: ComparisonTable, tol: Tolerances,
+              strict: bool = False) -> Operator:
+    pre, used = compile_condition(op.precondition, comps, tol, snap=strict)
     req, forb = fact_literals(op.precondition) or (0, 0)
     effect, parts = compile_effect(op.effect, comps, tol)
     return Operator(i, op.signature, op.name, op.args, pre, used, req, forb, effect, parts,
-                    is_noop(op), op)
+                    is_noop(op), op, not written_fluents(op.effect))
 
 
-def compile_task(task: Task, tol: Tolerances = VAL) -> CompiledTask:
-    """The compiled task (cached per task and tolerances)."""
-    return per_task(task, ("compiled", tol), lambda: _compile(task, tol))
+def compile_task(task: Task, tol: Tolerances = VAL, strict: bool = False) -> CompiledTask:
+    """The compiled task (cached per task, tolerances and ``strict``).
+
+    ``strict`` (the planner's view): the goal and the action preconditions are read snapped
+    (exactly, up to ``tol.zero`` of rounding; a strict comparison must hold by more), so a
+    plan never leans on the slack; events and the conditions of conditional effects are still
+    read with ``tol``, as a validator reads them.
+    """
+    return per_task(task, ("compiled", tol, strict), lambda: _compile(task, tol, strict))
 
 
-def _compile(task: Task, tol: Tolerances) -> CompiledTask:
+def _compile(task: Task, tol: Tolerances, strict: bool) -> CompiledTask:
     comps = ComparisonTable()
-    actions = [_operator(i, a, comps, tol) for i, a in enumerate(task.actions)]
+    actions = [_operator(i, a, comps, tol, strict) for i, a in enumerate(task.actions)]
     events = [_operator(i, e, comps, tol) for i, e in enumerate(task.events)]
     processes = []
     classes: dict[Condition, int] = {}
@@ -275,7 +286,7 @@ def _compile(task: Task, tol: Tolerances) -> CompiledTask:
         processes.append(Process(i, p.signature, pre, used, req, forb, rates, cls, reads,
                                  sum(1 << f for f in p.discrete.add),
                                  sum(1 << f for f in p.discrete.delete)))
-    goal, goal_comps = compile_condition(task.goal, comps, tol)
+    goal, goal_comps = compile_condition(task.goal, comps, tol, snap=strict)
     dynamic = frozenset().union(*(e.pre_comps for e in events), *(p.pre_comps for p in processes))
     watched = dynamic | goal_comps | frozenset().union(*(a.pre_comps for a in actions))
     fluent_comps: dict[int, list[int]] = {}
@@ -287,5 +298,5 @@ def _compile(task: Task, tol: Tolerances) -> CompiledTask:
         task=task, tol=tol, comps=comps, actions=actions, events=events, processes=processes,
         goal=goal, goal_comps=goal_comps, init_facts=sum(1 << f for f in task.init_facts),
         init_values=init_values, dynamic=dynamic, watched=watched,
-        fluent_comps={f: tuple(c) for f, c in fluent_comps.items()},
+        fluent_comps={f: tuple(c) for f, c in fluent_comps.items()}, strict=strict,
     )
