@@ -13,7 +13,6 @@ import importlib
 import os
 import sys
 import time
-import traceback
 from collections.abc import Sequence
 
 from artiplan import __version__
@@ -119,6 +118,8 @@ def main(argv: Sequence[str] | None = None) -> int:
         print(f"artiplan {args.command}: interrupted", file=sys.stderr)
         return 130
     except Exception:
+        import traceback  # only now: it costs a noticeable share of a short command's start
+
         traceback.print_exc()
         print(
             f"artiplan {args.command}: internal error (a bug). Please report it to {REPORT_URL}.",

@@ -12,7 +12,6 @@ marked by a first comment line, and the exit code is 4 with the reason on stderr
 from __future__ import annotations
 
 import argparse
-import json
 import resource
 import sys
 from collections.abc import Mapping
@@ -130,6 +129,8 @@ def _progress(status: str, stats: Mapping[str, Any], message: str) -> None:
 
 
 def _write_stats(path: Path, status: str, message: str, stats: Mapping[str, Any]) -> None:
+    import json
+
     doc = {"schema": 1, "status": status, "message": message,
            **{k: v for k, v in stats.items()
               if isinstance(v, (int, float, str, bool, list, dict))}}

@@ -9,14 +9,19 @@
 Errors are :class:`artiplan.errors.InputError` with file:line:col (exit code 3).
 """
 
-from artiplan.pddl.checker import check_problem
-from artiplan.pddl.grounding import ground
-from artiplan.pddl.loader import load_domain, load_problem, load_task
-from artiplan.pddl.parser import parse_domain, parse_problem
-from artiplan.pddl.syntax import Domain, Problem
-from artiplan.pddl.task import Task
-from artiplan.pddl.writer import write_domain, write_problem
+from __future__ import annotations
 
+import importlib
+from typing import TYPE_CHECKING, Any
+
+#: Public name -> the module defining it; imported on first use, so that importing one
+#: module of the package (the task, say) does not import the parser and the writer too.
+_EXPORTS = {
+    "Domain": "syntax", "Problem": "syntax", "Task": "task", "check_problem": "checker",
+    "ground": "grounding", "load_domain": "loader", "load_problem": "loader",
+    "load_task": "loader", "parse_domain": "parser", "parse_problem": "parser",
+    "write_domain": "writer", "write_problem": "writer",
+}
 __all__ = [
     "Domain",
     "Problem",
@@ -31,3 +36,19 @@ __all__ = [
     "write_domain",
     "write_problem",
 ]
+
+if TYPE_CHECKING:
+    from artiplan.pddl.checker import check_problem
+    from artiplan.pddl.grounding import ground
+    from artiplan.pddl.loader import load_domain, load_problem, load_task
+    from artiplan.pddl.parser import parse_domain, parse_problem
+    from artiplan.pddl.syntax import Domain, Problem
+    from artiplan.pddl.task import Task
+    from artiplan.pddl.writer import write_domain, write_problem
+
+
+def __getattr__(name: str) -> Any:
+    module = _EXPORTS.get(name)
+    if module is None:
+        raise AttributeError(f"module 'artiplan.pddl' has no attribute {name!r}")
+    return getattr(importlib.import_module(f"artiplan.pddl.{module}"), name)

@@ -12,11 +12,6 @@ import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
 
-try:  # psutil is a dependency, but keep the limits usable without it
-    import psutil
-except ImportError:  # pragma: no cover
-    psutil = None
-
 
 class LimitReached(Exception):
     """The search ran out of time (``kind == 'time'``) or memory (``'memory'``)."""
@@ -27,11 +22,15 @@ class LimitReached(Exception):
 
 
 def rss_mb() -> float:
-    """Resident set size of this process [MB]."""
-    if psutil is not None:
+    """Resident set size of this process [MB] (Linux ``/proc``; psutil elsewhere, imported only
+    then: it costs a sizeable part of a small problem's start-up)."""
+    try:
+        with open("/proc/self/statm") as fh:
+            return int(fh.read().split()[1]) * os.sysconf("SC_PAGE_SIZE") / 2**20
+    except OSError:  # pragma: no cover - not Linux
+        import psutil
+
         return float(psutil.Process(os.getpid()).memory_info().rss) / 2**20
-    with open("/proc/self/statm") as fh:  # pragma: no cover - Linux fallback
-        return int(fh.read().split()[1]) * os.sysconf("SC_PAGE_SIZE") / 2**20
 
 
 @dataclass
