@@ -13,10 +13,10 @@ Evaluation is lazy (as in Fast Downward's lazy search): successors enter the ope
 their parent's value and are computed when popped. Two open lists, all operators and preferred
 ones, are popped alternately, with a boost for the preferred list after progress (LAMA). Ties are
 broken by insertion order, so a run is deterministic. Duplicates are detected on the facts and the
-values rounded to ``value_precision``. One pruning: a fact-only action applied right after
-another (no wait between) that restores the facts from before that other, also fact-only,
-action is skipped (a start then stop that only lets ``epsilon`` pass). Actions that change
-numbers are never pruned this way (two increases in a row are a plan).
+values rounded to ``value_precision``. One pruning: an action applied right after another (no
+wait between) that restores the facts, and every number the two write, from before that other
+action is skipped (a start then stop that only lets ``epsilon`` pass; two increases in a row
+are kept).
 """
 
 from __future__ import annotations
@@ -177,10 +177,9 @@ class Search:
             facts, values = act.effect(facts, values)
             after = len(log)
             facts, values, active = kernel.settle(t, facts, values, log)
-            if parent.by_action and act.facts_only and isinstance(parent.op, Apply) and \
-                    self.ct.actions[parent.op.action].facts_only and \
-                    facts == self.nodes[parent.parent].facts:
-                # undoes the previous fact-only action after only epsilon: pointless
+            if parent.by_action and isinstance(parent.op, Apply) and \
+                    self._undoes(parent, act.writes, facts, values):
+                # undoes the previous action after only epsilon: pointless
                 self.stats["undo_pruned"] += 1
                 return None
             if self._event_follows(t, values, active):
@@ -205,6 +204,16 @@ class Search:
         t, facts, values, active = res
         return Node(t, facts, values, parent.ready, pi, op, log, False, active,
                     n_actions=parent.n_actions, last_event=last_event_after(parent, log))
+
+    def _undoes(self, parent: Node, writes: frozenset[int], facts: int, values: Values) -> bool:
+        """True when an action right after ``parent``'s restores the facts and every number
+        the two actions write as they were before ``parent``'s action."""
+        before = self.nodes[parent.parent]
+        if facts != before.facts:
+            return False
+        assert isinstance(parent.op, Apply)
+        written = writes | self.ct.actions[parent.op.action].writes
+        return all(values[i] == before.values[i] for i in written)
 
     def _happening(
         self, node: Node, log: EventLog

@@ -195,8 +195,8 @@ class Operator:
     parts: PartsFn
     noop: bool
     source: GroundAction
-    #: True when the effect changes facts only (no number, conditionally or not)
-    facts_only: bool = False
+    #: The fluents the effect may change (conditionally or not)
+    writes: frozenset[int] = frozenset()
 
 
 @dataclass(frozen=True)
@@ -252,7 +252,7 @@ def _operator(i: int, op: GroundAction, comps: ComparisonTable, tol: Tolerances,
     req, forb = fact_literals(op.precondition) or (0, 0)
     effect, parts = compile_effect(op.effect, comps, tol)
     return Operator(i, op.signature, op.name, op.args, pre, used, req, forb, effect, parts,
-                    is_noop(op), op, not written_fluents(op.effect))
+                    is_noop(op), op, frozenset(written_fluents(op.effect)))
 
 
 def compile_task(task: Task, tol: Tolerances = VAL, strict: bool = False) -> CompiledTask:
