@@ -14,9 +14,9 @@ their parent's value and are computed when popped. Two open lists, all operators
 ones, are popped alternately, with a boost for the preferred list after progress (LAMA). Ties are
 broken by insertion order, so a run is deterministic. Duplicates are detected on the facts and the
 values rounded to ``value_precision``. One pruning: an action applied right after another (no
-wait between) that restores the facts, and every number the two write, from before that other
-action is skipped (a start then stop that only lets ``epsilon`` pass; two increases in a row
-are kept).
+wait between) that restores the facts from before that other action, and every number the two
+write unless they only set it to a constant, is skipped (a start then stop that only lets
+``epsilon`` pass; two increases in a row are kept).
 """
 
 from __future__ import annotations
@@ -30,7 +30,7 @@ from dataclasses import dataclass, field
 from artiplan.errors import InvalidPlanError
 from artiplan.search.heuristic import Evaluation, Heuristic
 from artiplan.search.waits import Waits, ceil_grid, grid_after
-from artiplan.semantics.compiled import CompiledTask
+from artiplan.semantics.compiled import CompiledTask, Operator
 from artiplan.semantics.kernel import EventLog, Kernel, Values
 from artiplan.tolerances import VAL_EVENT_WINDOW
 
@@ -178,7 +178,7 @@ class Search:
             after = len(log)
             facts, values, active = kernel.settle(t, facts, values, log)
             if parent.by_action and isinstance(parent.op, Apply) and \
-                    self._undoes(parent, act.writes, facts, values):
+                    self._undoes(parent, act, facts, values):
                 # undoes the previous action after only epsilon: pointless
                 self.stats["undo_pruned"] += 1
                 return None
@@ -205,14 +205,16 @@ class Search:
         return Node(t, facts, values, parent.ready, pi, op, log, False, active,
                     n_actions=parent.n_actions, last_event=last_event_after(parent, log))
 
-    def _undoes(self, parent: Node, writes: frozenset[int], facts: int, values: Values) -> bool:
-        """True when an action right after ``parent``'s restores the facts and every number
-        the two actions write as they were before ``parent``'s action."""
+    def _undoes(self, parent: Node, act: Operator, facts: int, values: Values) -> bool:
+        """True when ``act`` right after ``parent``'s action restores the facts from before
+        it, and every number the two write is restored or only set to a constant (a start then
+        stop: held-index back to 1; two increases in a row are kept)."""
         before = self.nodes[parent.parent]
         if facts != before.facts:
             return False
         assert isinstance(parent.op, Apply)
-        written = writes | self.ct.actions[parent.op.action].writes
+        prev = self.ct.actions[parent.op.action]
+        written = (act.writes - act.resets) | (prev.writes - prev.resets)
         return all(values[i] == before.values[i] for i in written)
 
     def _happening(

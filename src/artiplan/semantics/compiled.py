@@ -171,6 +171,15 @@ def is_noop(action: GroundAction) -> bool:
     return not (eff.add or eff.delete or eff.numeric or eff.conditional)
 
 
+def constant_assigns(eff: Effect) -> set[int]:
+    """Fluents ``eff`` only assigns constants to (unconditionally; no other change)."""
+    const = {ne.fluent for ne in eff.numeric if ne.op == "assign" and not fluents_of(ne.expr)}
+    other = written_fluents(eff) - const
+    for ce in eff.conditional:
+        other |= written_fluents(ce.effect)
+    return const - other
+
+
 def written_fluents(eff: Effect) -> set[int]:
     """Fluents an instantaneous effect may change."""
     out = {ne.fluent for ne in eff.numeric}
@@ -197,6 +206,8 @@ class Operator:
     source: GroundAction
     #: The fluents the effect may change (conditionally or not)
     writes: frozenset[int] = frozenset()
+    #: The fluents it only ever sets to a constant (e.g. ``(assign (held-index) 1)``)
+    resets: frozenset[int] = frozenset()
 
 
 @dataclass(frozen=True)
@@ -252,7 +263,8 @@ def _operator(i: int, op: GroundAction, comps: ComparisonTable, tol: Tolerances,
     req, forb = fact_literals(op.precondition) or (0, 0)
     effect, parts = compile_effect(op.effect, comps, tol)
     return Operator(i, op.signature, op.name, op.args, pre, used, req, forb, effect, parts,
-                    is_noop(op), op, frozenset(written_fluents(op.effect)))
+                    is_noop(op), op, frozenset(written_fluents(op.effect)),
+                    frozenset(constant_assigns(op.effect)))
 
 
 def compile_task(task: Task, tol: Tolerances = VAL, strict: bool = False) -> CompiledTask:
