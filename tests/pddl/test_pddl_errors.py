@@ -104,7 +104,6 @@ def test_declaration_and_type_errors(old: str, new: str, line: int, col: int,
     [
         ("(clear b1)", "(clear b3)", 3, 28, "undeclared object or constant 'b3'"),
         ("(clear b1)", "(clear T1)", 3, 28, "type error"),
-        ("(clear b1)", "(clean b1)", 3, 21, "undeclared predicate 'clean'"),
         ("(= (weight b1) 2)", "(= (weight b1 b2) 2)", 3, 35, "takes 1 argument(s), found 2"),
         ("(:goal (not (on b1 T1)))", "(:goal (not (on b1 b2)))", 4, 22, "type error"),
         ("b1 b2 - block", "b1 b2 - brick", 2, 13, "undeclared type 'brick'"),
@@ -126,17 +125,27 @@ def test_discrete_numeric_effect_in_a_process_is_an_error() -> None:
     assert "discrete numeric effect" in str(err)
 
 
-def test_durative_actions_parse_but_do_not_ground() -> None:
+def test_durative_actions_ground_into_pddl_plus() -> None:
     text = DOMAIN.replace(")))\n", "))\n  (:durative-action wait :parameters () :duration "
                           "(= ?duration 2) :condition (at start (clear b1)) :effect "
                           "(at end (clear b1))))\n")
     text = text.replace("(:constants T1 - table)", "(:constants T1 - table b1 - block)")
     domain = parse_domain(text, "dom.pddl")
     assert domain.operators[-1].kind == "durative-action"
-    with pytest.raises(InputError) as info:
-        ground(domain, parse_problem(PROBLEM.replace("b1 b2 - block", "b2 - block"), "p"))
-    assert where(info.value) == ("dom.pddl", 11, 3)
-    assert "durative" in str(info.value)
+    task = ground(domain, parse_problem(PROBLEM.replace("b1 b2 - block", "b2 - block"), "p"))
+    assert task.durative == ("wait",)
+    assert {a.name for a in task.actions} >= {"wait@start", "wait@end"}
+    assert [p.name for p in task.processes] == ["wait@during"]
+
+
+def test_harmless_quirks_are_warnings_with_their_place() -> None:
+    """An undeclared predicate in :init (ENHSP ignores it) and '? b' (a space after '?')."""
+    problem = parse_problem(PROBLEM.replace("(clear b1)", "(clear b1) (clean b1)"), "prob.pddl")
+    task = ground(parse_domain(DOMAIN.replace("?b - block ?t", "? b - block ?t"), "dom.pddl"),
+                  problem)
+    assert any("prob.pddl:3:" in w and "'clean'" in w and "ignored" in w for w in task.warnings)
+    assert any(w.startswith("dom.pddl:5:20:") and "'? b' read as '?b'" in w for w in task.warnings)
+    assert not any("clean" in f for f in task.facts)
 
 
 def test_empty_and_truncated_files() -> None:

@@ -156,6 +156,12 @@ def _check_init(scope: Scope, problem: s.Problem) -> list[str]:
     values: set[tuple[str, ...]] = set()
     for item in problem.init:
         if isinstance(item, s.AtomicFormula):
+            if item.predicate.lower() not in scope.predicates:
+                if item.predicate.lower() not in undeclared:
+                    undeclared.add(item.predicate.lower())
+                    warnings.append(f"{_where(item.loc)}predicate '{item.predicate}' is in :init "
+                                    "but never declared in the domain (ignored)")
+                continue
             scope.check_atom(item, {})
         elif item.target.name.lower() in scope.functions:
             scope.check_function(item.target, {})

@@ -1,12 +1,13 @@
 """The PDDL+ grammar artiplan reads, as data: the parser walks these tables.
 
-In BNF (PDDL 2.1 level 2 plus PDDL+ processes and events; ``:durative-action`` is read but not
-grounded)::
+In BNF (PDDL 2.1 levels 2-4 plus PDDL+ processes and events, and ENHSP's global constraints
+as an extension; durative actions are compiled into PDDL+ by :mod:`artiplan.pddl.durative`)::
 
     domain     ::= (define (domain NAME) SECTION*)
     SECTION    ::= (:requirements KEY*) | (:types TYPED*) | (:constants TYPED*)
                  | (:predicates (NAME TYPEDVAR*)*) | (:functions (NAME TYPEDVAR*) [- number]*)
                  | (:action|:process|:event NAME OPFIELD*) | (:durative-action NAME DAFIELD*)
+                 | (:constraint NAME :parameters (TYPEDVAR*) :condition GD)   ; ENHSP
     OPFIELD    ::= :parameters (TYPEDVAR*) | :precondition GD | :effect EFFECT
     DAFIELD    ::= :parameters (TYPEDVAR*) | :duration GD | :condition GD | :effect EFFECT
     TYPED      ::= NAME+ [- TYPE] ...      TYPE ::= NAME | (either NAME+)
@@ -14,7 +15,7 @@ grounded)::
                  | (exists (TYPEDVAR*) GD) | (forall (TYPEDVAR*) GD) | (COMP NEXP NEXP)
                  | (= TERM TERM) | (at start GD) | (at end GD) | (over all GD)
     NEXP       ::= NUMBER | (F TERM*) | F | (+ NEXP NEXP+) | (* NEXP NEXP+) | (- NEXP NEXP)
-                 | (/ NEXP NEXP) | (- NEXP) | #t | ?duration | total-time
+                 | (/ NEXP NEXP) | (^ NEXP NEXP) | (- NEXP) | #t | ?duration | total-time
     EFFECT     ::= () | ATOM | (not ATOM) | (and EFFECT*) | (forall (TYPEDVAR*) EFFECT)
                  | (when GD EFFECT) | (ASSIGNOP (F TERM*) NEXP) | (at start|at end EFFECT)
     problem    ::= (define (problem NAME) (:domain NAME) PSECTION*)
@@ -36,6 +37,7 @@ DOMAIN_SECTIONS = (
     ":process",
     ":event",
     ":durative-action",
+    ":constraint",
 )
 
 #: Sections of a problem.
@@ -47,6 +49,7 @@ OPERATOR_SECTIONS = {
     ":process": "process",
     ":event": "event",
     ":durative-action": "durative-action",
+    ":constraint": "constraint",
 }
 
 #: The fields each operator kind accepts (any order; each at most once).
@@ -55,6 +58,7 @@ OPERATOR_FIELDS = {
     "process": (":parameters", ":precondition", ":effect"),
     "event": (":parameters", ":precondition", ":effect"),
     "durative-action": (":parameters", ":duration", ":condition", ":effect"),
+    "constraint": (":parameters", ":condition"),
 }
 
 #: Goal-description connectives with their arity: (minimum, maximum or None for unbounded).
@@ -70,7 +74,7 @@ QUANTIFIERS = ("exists", "forall")
 COMPARISONS = ("<", "<=", ">", ">=", "=")
 
 #: Arithmetic operators and their arity (minimum, maximum or None); ``-`` with one is unary.
-ARITHMETIC = {"+": (2, None), "*": (2, None), "-": (1, 2), "/": (2, 2)}
+ARITHMETIC = {"+": (2, None), "*": (2, None), "-": (1, 2), "/": (2, 2), "^": (2, 2)}
 
 ASSIGN_OPS = ("assign", "increase", "decrease", "scale-up", "scale-down")
 

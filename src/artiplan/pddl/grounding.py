@@ -11,12 +11,14 @@ parameter over every object of its type) that did not make it into the task.
 from __future__ import annotations
 
 import time
+from dataclasses import replace
 
 from artiplan.errors import InputError
 from artiplan.pddl import syntax as s
 from artiplan.pddl import task as t
 from artiplan.pddl.checker import check_problem
-from artiplan.pddl.instantiate import GroundContext, ground_condition, ground_num
+from artiplan.pddl.durative import RUNNING, compile_durative
+from artiplan.pddl.instantiate import GroundContext, expand, ground_condition, ground_num
 from artiplan.pddl.operators import Instance, instantiate
 from artiplan.pddl.reachability import reachable
 from artiplan.pddl.renumber import (
@@ -27,6 +29,7 @@ from artiplan.pddl.renumber import (
     fluents_in_num,
     fold_facts,
 )
+from artiplan.pddl.simplify import make_and
 from artiplan.pddl.types import TypeHierarchy, objects_by_type
 
 
@@ -88,15 +91,10 @@ def ground(domain: s.Domain, problem: s.Problem) -> t.Task:
     """Ground ``problem`` of ``domain`` (both syntax trees) into an indexed task."""
     start = time.perf_counter()
     warnings = [*domain.warnings, *check_problem(domain, problem)]
-    for op in domain.operators:
-        if op.kind == "durative-action":
-            raise InputError(
-                f"durative action '{op.name}': artiplan grounds PDDL+ (actions, processes, "
-                "events), not PDDL 2.1 durative actions", op.loc,
-                expected=":action, :process or :event", found=":durative-action",
-            )
+    domain, durative = compile_durative(domain)
     ctx, symbols = _context(domain, problem)
     declared = {f.name.lower() for f in domain.functions}
+    predicates = {p.name.lower() for p in domain.predicates}
     init_values: dict[int, float] = {}
     init_facts: set[int] = set()
     for item in problem.init:
@@ -104,22 +102,33 @@ def ground(domain: s.Domain, problem: s.Problem) -> t.Task:
             key = (item.target.name.lower(), *(a.name.lower() for a in item.target.args))
             if key[0] in declared and key[0] not in ctx.static_functions:
                 init_values[ctx.fluent(key)] = item.value
-        elif item.predicate.lower() not in ctx.static_predicates:
+        elif item.predicate.lower() in predicates - ctx.static_predicates:  # undeclared: warned
             init_facts.add(ctx.fact((item.predicate.lower(),
                                      *(a.name.lower() for a in item.args))))
     instances: list[Instance] = []
+    invariants: list[t.Condition] = []
     naive = 0
     for op in domain.operators:
+        if op.kind == "constraint":  # an invariant for every binding, not an operator
+            invariants += [t.TRUE if op.precondition is None else
+                           ground_condition(ctx, op.precondition, b)
+                           for b in expand(ctx, op.parameters, {})]
+            continue
         found, count = instantiate(ctx, op)
         instances.extend(found)
         naive += count
     goal = t.TRUE if problem.goal is None else ground_condition(ctx, problem.goal, {})
+    if durative:  # a plan ends with every durative action ended (as VAL requires)
+        running = {n.lower() + RUNNING for n in durative}
+        goal = make_and([goal, *(t.Not(t.Atom(i)) for key, i in ctx.fact_ids.items()
+                                 if key[0] in running)])
     metric, metric_warning = _metric(ctx, problem.metric)
     warnings.extend(metric_warning)
     applicable, reached = reachable(instances, init_facts)
     kept = [inst for inst, ok in zip(instances, applicable, strict=True) if ok]
-    return _assemble(ctx, symbols, domain, problem, kept, init_facts, reached, init_values,
-                     goal, metric, naive, warnings, start)
+    task = _assemble(ctx, symbols, domain, problem, kept, init_facts, reached, init_values,
+                     make_and(invariants), goal, metric, naive, warnings, start)
+    return replace(task, durative=durative)
 
 
 def _metric(ctx: GroundContext, spec: s.MetricSpec | None) -> tuple[t.Metric | None, list[str]]:
@@ -138,9 +147,9 @@ Op = tuple[Instance, t.Condition, t.Effect]
 
 
 def _fold(ctx: GroundContext, kept: list[Instance], init_facts: set[int], reached: set[int],
-          goal: t.Condition) -> tuple[list[Op], t.Condition, dict[int, t.Condition], list[int]]:
-    """Fold constant facts and renumber the rest: operators still possible, goal, fact map,
-    kept old fact ids."""
+          goal: t.Condition) -> tuple[list[Op], t.Condition, Renumbering, list[int]]:
+    """Fold constant facts and renumber the rest: operators still possible, goal, the facts'
+    renumbering, kept old fact ids."""
     effects = [inst.effect.effect() for inst in kept]
     fact_map, kept_facts = fold_facts(len(ctx.fact_ids), init_facts, reached,
                                       deleted_facts(effects))
@@ -150,12 +159,13 @@ def _fold(ctx: GroundContext, kept: list[Instance], init_facts: set[int], reache
         pre = by_facts.condition(inst.precondition)
         if pre != t.FALSE:
             ops.append((inst, pre, by_facts.effect(eff)))
-    return ops, by_facts.condition(goal), fact_map, kept_facts
+    return ops, by_facts.condition(goal), by_facts, kept_facts
 
 
 def _used_fluents(ops: list[Op], goal: t.Condition, metric: t.Metric | None,
                   init_values: dict[int, float]) -> list[int]:
-    """Old ids of the fluents the task needs (initialised or read or changed), in order."""
+    """Old ids of the fluents the task needs (initialised or read or changed), in order
+    (``goal``: the goal and the invariants)."""
     used = set(init_values)
     used.update(fluents_in_condition(goal))
     if metric is not None and metric.expr is not None:
@@ -192,11 +202,13 @@ def _operators(
 def _assemble(
     ctx: GroundContext, symbols: dict[str, str], domain: s.Domain, problem: s.Problem,
     kept: list[Instance], init_facts: set[int], reached: set[int],
-    init_values: dict[int, float], goal: t.Condition, metric: t.Metric | None, naive: int,
-    warnings: list[str], start: float,
+    init_values: dict[int, float], invariant: t.Condition, goal: t.Condition,
+    metric: t.Metric | None, naive: int, warnings: list[str], start: float,
 ) -> t.Task:
-    ops, goal, fact_map, kept_facts = _fold(ctx, kept, init_facts, reached, goal)
-    old_fluents = _used_fluents(ops, goal, metric, init_values)
+    ops, goal, by_facts, kept_facts = _fold(ctx, kept, init_facts, reached, goal)
+    fact_map = by_facts.facts
+    invariant = by_facts.condition(invariant)
+    old_fluents = _used_fluents(ops, t.And((goal, invariant)), metric, init_values)
     by_fluents = Renumbering(
         {i: t.Atom(i) for i in range(len(kept_facts))},
         None if len(old_fluents) == len(ctx.fluent_ids)
@@ -220,6 +232,7 @@ def _assemble(
         init_facts=frozenset(m.fact for f in init_facts if isinstance(m := fact_map[f], t.Atom)),
         init_values=tuple(init_values.get(old) for old in old_fluents),
         goal=by_fluents.condition(goal),
+        invariants=_parts(by_fluents.condition(invariant)),
         actions=tuple(actions),
         events=tuple(events),
         processes=tuple(processes),
@@ -227,6 +240,13 @@ def _assemble(
         stats=stats,
         warnings=tuple(warnings),
     )
+
+
+def _parts(c: t.Condition) -> tuple[t.Condition, ...]:
+    """A conjunction's parts (none for ``TRUE``)."""
+    if c == t.TRUE:
+        return ()
+    return c.parts if isinstance(c, t.And) else (c,)
 
 
 def _name(ctx: GroundContext, symbols: dict[str, str], key: tuple[str, ...]) -> str:

@@ -2,6 +2,8 @@
 
 ``;`` starts a comment to the end of the line. A token ``-type`` (a type written right after
 ``?x -``, without a space) is split into ``-`` and ``type``; ``-3`` and ``-.5`` stay numbers.
+A ``?`` standing alone before a name (``? g``, a quirk other tools accept) is read as ``?g``,
+with a warning.
 """
 
 from __future__ import annotations
@@ -65,8 +67,9 @@ def is_number(text: str) -> bool:
     return _NUMBER.match(text) is not None
 
 
-def tokenize(text: str, filename: str) -> list[Token]:
-    """All tokens of ``text``, comments dropped, ``(`` and ``)`` as tokens of their own."""
+def tokenize(text: str, filename: str, warnings: list[str] | None = None) -> list[Token]:
+    """All tokens of ``text``, comments dropped, ``(`` and ``)`` as tokens of their own
+    (harmless quirks read as meant, each noted in ``warnings``)."""
     tokens: list[Token] = []
     line, line_start = 1, 0
     for m in _TOKEN.finditer(text):
@@ -79,7 +82,12 @@ def tokenize(text: str, filename: str) -> list[Token]:
                 line_start = start + s.rfind("\n") + 1
             continue
         col = start - line_start + 1
-        if len(s) > 1 and s[0] == "-" and not is_number(s):
+        if tokens and tokens[-1].text == "?" and s not in ("(", ")"):
+            lone = tokens.pop()
+            if warnings is not None:
+                warnings.append(f"{lone.loc}: '? {s}' read as '?{s}' (a space after '?')")
+            tokens.append(Token("?" + s, lone.loc))
+        elif len(s) > 1 and s[0] == "-" and not is_number(s):
             tokens.append(Token("-", SourceLocation(filename, line, col)))
             tokens.append(Token(s[1:], SourceLocation(filename, line, col + 1)))
         else:
@@ -87,9 +95,10 @@ def tokenize(text: str, filename: str) -> list[Token]:
     return tokens
 
 
-def read_sexpr(text: str, filename: str) -> SList:
-    """The single top-level list of ``text`` (a domain or problem file)."""
-    tokens = tokenize(text.removeprefix("\ufeff"), filename)  # a byte-order mark is not text
+def read_sexpr(text: str, filename: str, warnings: list[str] | None = None) -> SList:
+    """The single top-level list of ``text`` (a domain or problem file); quirks noted in
+    ``warnings``."""
+    tokens = tokenize(text.removeprefix("\ufeff"), filename, warnings)  # no byte-order mark
     if not tokens:
         raise InputError(
             "empty file", SourceLocation(filename, 1, 1), expected="'(define'", found="nothing"

@@ -8,6 +8,7 @@ constants, variables; arities); ``parse_problem`` checks syntax only, and
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import cast
 
 from artiplan.errors import InputError
 from artiplan.pddl import grammar as g
@@ -30,7 +31,8 @@ from artiplan.pddl.lexer import SExpr, SList, Token, is_number, read_sexpr
 
 def parse_domain(text: str, filename: str = "<domain>") -> s.Domain:
     """Parse and check a domain; warnings are in ``Domain.warnings``."""
-    top = read_sexpr(text, filename)
+    quirks: list[str] = []
+    top = read_sexpr(text, filename, quirks)
     name = _define_header(top, "domain")
     fields: dict[str, object] = {}
     operators: list[s.Operator] = []
@@ -39,6 +41,10 @@ def parse_domain(text: str, filename: str = "<domain>") -> s.Domain:
         key = _section_key(lst, g.DOMAIN_SECTIONS)
         if key in g.OPERATOR_SECTIONS:
             operators.append(_read_operator(lst, g.OPERATOR_SECTIONS[key]))
+            if key == ":constraint":
+                quirks.append(f"{lst.loc}: (:constraint {operators[-1].name} ...) is ENHSP's "
+                              "global constraint, an extension (read as an invariant: it must "
+                              "hold over the whole trajectory)")
             continue
         if key in fields:
             raise fail(f"section {key} appears twice", lst.items[0], expected="one " + key)
@@ -53,12 +59,13 @@ def parse_domain(text: str, filename: str = "<domain>") -> s.Domain:
         operators=tuple(operators),
         loc=top.loc,
     )
-    return replace(domain, warnings=tuple(check_domain(domain)))
+    return replace(domain, warnings=(*quirks, *check_domain(domain)))
 
 
 def parse_problem(text: str, filename: str = "<problem>") -> s.Problem:
     """Parse a problem (syntax only; see :func:`artiplan.pddl.checker.check_problem`)."""
-    top = read_sexpr(text, filename)
+    quirks: list[str] = []
+    top = read_sexpr(text, filename, quirks)
     name = _define_header(top, "problem")
     fields: dict[str, object] = {}
     for section in top.items[2:]:
@@ -71,9 +78,10 @@ def parse_problem(text: str, filename: str = "<problem>") -> s.Problem:
         raise InputError("the problem names no domain", top.loc, expected="(:domain NAME)",
                          found="no :domain section")
     init: tuple[s.InitElement, ...] = ()
-    warnings: list[str] = []
+    warnings: list[str] = quirks
     if ":init" in fields:
-        init, warnings = fields[":init"]  # type: ignore[misc]
+        found = cast(tuple[tuple[s.InitElement, ...], list[str]], fields[":init"])
+        init, warnings = found[0], [*quirks, *found[1]]
     return s.Problem(
         name=name,
         domain_name=fields[":domain"],  # type: ignore[arg-type]

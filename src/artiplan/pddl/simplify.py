@@ -12,6 +12,7 @@ _ARITH: dict[str, Callable[[float, float], float]] = {
     "-": operator.sub,
     "*": operator.mul,
     "/": operator.truediv,
+    "^": operator.pow,
 }
 
 _COMPARE: dict[str, Callable[[float, float], bool]] = {
@@ -67,7 +68,8 @@ def make_not(c: t.Condition) -> t.Condition:
 def make_arith(op: str, left: t.NumExpr, right: t.NumExpr) -> t.NumExpr:
     """``BinOp``, or a ``Const`` when both sides are constant (never divides by zero)."""
     if (isinstance(left, t.Const) and isinstance(right, t.Const)
-            and not (op == "/" and right.value == 0)):
+            and not (op == "/" and right.value == 0)
+            and not (op == "^" and left.value < 0 and not float(right.value).is_integer())):
         return t.Const(_ARITH[op](left.value, right.value))
     return t.BinOp(op, left, right)  # type: ignore[arg-type]
 

@@ -71,9 +71,9 @@ class FunctionTerm:
 
 @dataclass(frozen=True)
 class Arithmetic:
-    """``(op a b ...)``: ``+`` and ``*`` may be n-ary, ``-`` and ``/`` binary."""
+    """``(op a b ...)``: ``+`` and ``*`` may be n-ary, ``-``, ``/`` and ``^`` binary."""
 
-    op: Literal["+", "-", "*", "/"]
+    op: Literal["+", "-", "*", "/", "^"]
     args: tuple[NumExpr, ...]
     loc: SourceLocation | None = _loc()
 
@@ -258,15 +258,16 @@ class FunctionDecl:
     loc: SourceLocation | None = _loc()
 
 
-OperatorKind = Literal["action", "process", "event", "durative-action"]
+OperatorKind = Literal["action", "process", "event", "durative-action", "constraint"]
 
 
 @dataclass(frozen=True)
 class Operator:
-    """An ``:action``, ``:process``, ``:event`` or ``:durative-action``.
+    """An ``:action``, ``:process``, ``:event``, ``:durative-action`` or ENHSP's global
+    ``:constraint`` (an invariant over the whole trajectory).
 
     For durative actions ``duration`` holds the ``:duration`` constraint and ``precondition`` the
-    ``:condition``.
+    ``:condition``; for a constraint ``precondition`` holds its ``:condition``.
     """
 
     kind: OperatorKind

@@ -222,6 +222,11 @@ class Task:
         metric: The problem's ``:metric``, if any.
         stats: Grounding counts and time.
         warnings: Harmless oddities found while parsing and grounding, for the user to read.
+        invariants: Conditions that must hold on every stretch of time (ENHSP's global
+            constraints, the ``over all`` conditions of durative actions).
+        durative: Names of the durative actions, compiled into ``NAME@start``/``NAME@end``
+            actions and a ``NAME@during`` process (:mod:`artiplan.pddl.durative`); plans name
+            them with a duration, ``t: (NAME args) [d]``.
     """
 
     domain_name: str
@@ -237,6 +242,8 @@ class Task:
     metric: Metric | None = None
     stats: GroundingStats = field(default_factory=GroundingStats)
     warnings: tuple[str, ...] = ()
+    invariants: tuple[Condition, ...] = ()
+    durative: tuple[str, ...] = ()
 
     def fluent_index(self, name: str) -> int:
         """Index of a fluent given as ``(angle L2 z-axis)`` or ``angle(L2,z-axis)``,

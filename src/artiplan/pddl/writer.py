@@ -136,7 +136,7 @@ def _fmt_operator(op: s.Operator) -> str:
     if op.duration is not None:
         lines.append(f"{pad}:duration {fmt_formula(op.duration)}")
     if op.precondition is not None:
-        key = ":condition" if op.kind == "durative-action" else ":precondition"
+        key = ":condition" if op.kind in ("durative-action", "constraint") else ":precondition"
         lines.append(f"{pad}{key} {_multiline_formula(op.precondition, 2)}")
     if op.effect is not None:
         lines.append(f"{pad}:effect {_multiline_effect(op.effect, 2)}")

@@ -28,7 +28,7 @@ from artiplan.search.limits import LimitReached, Limits
 from artiplan.search.proofs import prove_unsolvable
 from artiplan.semantics.compiled import CompiledTask, compile_task
 from artiplan.semantics.kernel import Kernel
-from artiplan.semantics.plan import Plan, TimedAction, TimedEvent
+from artiplan.semantics.plan import Plan, TimedAction, TimedEvent, fold_durative
 from artiplan.semantics.results import PlanResult, PlanStats, PlanStatus, margins_of
 from artiplan.semantics.validator import ValidationReport, enabled_initial_events, validate
 from artiplan.tolerances import VAL_EVENT_WINDOW, VAL_TIME_TOLERANCE
@@ -297,4 +297,4 @@ def extract_plan(ct: CompiledTask, outcome: SearchOutcome) -> Plan:
         t, i = outcome.closing
         a = ct.actions[i]
         actions.append(TimedAction(round(t, 6), a.name, a.args))
-    return Plan(tuple(actions), tuple(events))
+    return fold_durative(Plan(tuple(actions), tuple(events)), ct.task.durative)

@@ -61,12 +61,26 @@ class WaitGoal:
 
 
 @dataclass(frozen=True, slots=True)
+class WaitFor:
+    """Wait until action ``action``'s precondition holds (its facts hold, a number does not
+    yet: a durative action's end, a threshold)."""
+
+    action: int
+
+
+@dataclass(frozen=True, slots=True)
+class WaitBefore:
+    """Wait until just before a condition that holds now fails (an action's precondition,
+    an invariant): the last moment to act (a duration's upper bound, a capacity)."""
+
+
+@dataclass(frozen=True, slots=True)
 class Start:
     """How the initial node is reached."""
 
 
-Op = Apply | WaitNext | WaitGroup | WaitGoal | Start
-WAIT_NEXT, WAIT_GOAL, START = WaitNext(), WaitGoal(), Start()
+Op = Apply | WaitNext | WaitGroup | WaitGoal | WaitFor | WaitBefore | Start
+WAIT_NEXT, WAIT_GOAL, WAIT_BEFORE, START = WaitNext(), WaitGoal(), WaitBefore(), Start()
 
 
 @dataclass(frozen=True)
@@ -141,6 +155,10 @@ class Search:
         self.noops = [a.index for a in ct.actions if a.noop]
         # the operators, built once (heap entries hold them)
         self.applies = [Apply(a.index) for a in ct.actions]
+        self.action_waits = [WaitFor(a.index) for a in ct.actions]
+        # comparisons that may close a window to act: action preconditions and invariants
+        self.closers = frozenset().union(*(a.pre_comps for a in ct.actions),
+                                         *(used for _, used in ct.invariants))
         self.group_waits = [WaitGroup(g) for g in range(len(heuristic.groups))]
         self.nodes: list[Node] = []
         self.seen: set[tuple[int, tuple[int, ...], tuple[float | None, ...]]] = set()
@@ -190,6 +208,13 @@ class Search:
         if isinstance(op, WaitNext):
             res = self.waits.next(parent.time, parent.facts, parent.values, log, parent.active,
                                   self.config.goal_margin, self.ct.goal_comps)
+        elif isinstance(op, WaitBefore):
+            res = self.waits.before(parent.time, parent.facts, parent.values, log,
+                                    parent.active, self.closers)
+        elif isinstance(op, WaitFor):
+            act = self.ct.actions[op.action]
+            res = self.waits.until(parent.time, parent.facts, parent.values, act.pre,
+                                   act.pre_comps, log, parent.active, self.config.max_wait_steps)
         else:
             if isinstance(op, WaitGroup):
                 g = self.h.groups[op.group]
@@ -348,9 +373,16 @@ class Search:
                 ops.append((WAIT_GOAL, True))
             ops.extend((self.group_waits[gi], True) for gi in ev.waits)
         pref = set(ev.preferred)
-        ops.extend((self.applies[i], True) for i in ev.preferred)
+        for i in ev.preferred:
+            act = self.ct.actions[i]
+            if moving and act.pre_comps and not act.pre(node.facts, node.values):
+                ops.append((self.action_waits[i], True))  # its numbers are not there yet
+            else:
+                ops.append((self.applies[i], True))
         if moving:
             ops.append((WAIT_NEXT, False))
+            if self.closers and self.waits.closing(node.values, node.active, self.closers):
+                ops.append((WAIT_BEFORE, False))
         for a in self.ct.actions:
             if a.index in pref or a.noop or node.facts & a.forb or a.req & ~node.facts:
                 continue

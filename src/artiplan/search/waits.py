@@ -15,7 +15,7 @@ import math
 
 from artiplan.semantics.compiled import CondFn
 from artiplan.semantics.flow import STILL, Flow
-from artiplan.semantics.kernel import EventLog, Kernel, Values
+from artiplan.semantics.kernel import EventLog, InvariantError, Kernel, Values
 
 #: (time [s], facts, values, active processes) at the end of a wait.
 Arrival = tuple[float, int, Values, tuple[int, ...]]
@@ -24,6 +24,11 @@ Arrival = tuple[float, int, Values, tuple[int, ...]]
 def grid_after(t: float, grid: float) -> float:
     """The first grid time at least one grid step after ``t`` [s]."""
     return round(math.ceil((t + grid) / grid - 1e-6) * grid, 9)
+
+
+def floor_grid(t: float, grid: float) -> float:
+    """The last grid time at or before ``t`` [s]."""
+    return round(math.floor(t / grid + 1e-6) * grid, 9)
 
 
 def ceil_grid(t: float, grid: float) -> float:
@@ -53,7 +58,7 @@ class Waits:
         if dt is None or not math.isfinite(dt):
             return None
         end = grid_after(t + dt, self.grid)
-        facts2, values2, act = k.advance(t, facts, values, end, log, active)
+        end, facts2, values2, act = self._advance(t, facts, values, end, log, active)
         if margin > 0.0 and goal_comps:
             newly = frozenset(c for c in goal_comps
                               if not self._holds(c, values) and self._holds(c, values2))
@@ -63,6 +68,46 @@ class Waits:
 
                 return self._margin(end, facts2, values2, cond, newly, log, act, margin)
         return end, facts2, values2, act
+
+    def _advance(self, t: float, facts: int, values: Values, until: float, log: EventLog,
+                 active: tuple[int, ...]) -> tuple[float, int, Values, tuple[int, ...]]:
+        """Let time pass to ``until`` [s]; if an invariant would fail on the way, stop at the
+        last grid time before (raise if that is no later than ``t`` + a grid step)."""
+        trial: EventLog = []
+        try:
+            out = self.kernel.advance(t, facts, values, until, trial, active)
+        except InvariantError as exc:
+            end = floor_grid(exc.time, self.grid)
+            if end <= t + self.grid or end >= until:
+                raise
+            trial = []
+            out = self.kernel.advance(t, facts, values, end, trial, active)
+            until = end
+        log.extend(trial)
+        return (until, *out)
+
+    def closing(self, values: Values, active: tuple[int, ...], comps: frozenset[int]) -> bool:
+        """True when one of ``comps`` holds now and reads a changing fluent (it may close)."""
+        flow = self.kernel.flow_of(active, values)
+        items = self.kernel.ct.comps.items
+        return any(items[c].fluents & flow.changing and self._holds(c, values) for c in comps)
+
+    def before(self, t: float, facts: int, values: Values, log: EventLog,
+               active: tuple[int, ...], comps: frozenset[int]) -> Arrival | None:
+        """Until the last grid time before one of ``comps`` that holds now fails (None if
+        none will, or that time is within a grid step)."""
+        k = self.kernel
+        flow = k.flow_of(active, values)
+        items = k.ct.comps.items
+        holding = tuple(sorted(c for c in comps if items[c].fluents & flow.changing
+                               and self._holds(c, values)))
+        dt = k.next_change(values, flow, holding) if holding else None
+        if dt is None or not math.isfinite(dt):
+            return None
+        end = floor_grid(t + dt, self.grid)
+        if end <= t + self.grid:
+            return None
+        return self._advance(t, facts, values, end, log, active)
 
     def until(self, t: float, facts: int, values: Values, cond: CondFn,
               cond_comps: frozenset[int], log: EventLog, active: tuple[int, ...],
@@ -85,7 +130,9 @@ class Waits:
             t_next = grid_after(t + dt, self.grid)
             if t_next > horizon:
                 return None
-            facts, values, act = k.advance(t, facts, values, t_next, log, act)
+            reached, facts, values, act = self._advance(t, facts, values, t_next, log, act)
+            if reached < t_next:  # stopped before an invariant fails: the last chance to act
+                return reached, facts, values, act
             t = t_next
             if cond(facts, values):
                 return self._margin(t, facts, values, cond, cond_comps, log, act, margin)

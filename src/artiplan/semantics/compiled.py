@@ -251,6 +251,8 @@ class CompiledTask:
     fluent_comps: dict[int, tuple[int, ...]]
     #: the goal and action preconditions are read snapped, without the slack (the planner's)
     strict: bool = False
+    #: invariants (read with ``tol`` at a point), with the comparisons each reads
+    invariants: tuple[tuple[CondFn, frozenset[int]], ...] = ()
 
     @property
     def n_fluents(self) -> int:
@@ -299,7 +301,9 @@ def _compile(task: Task, tol: Tolerances, strict: bool) -> CompiledTask:
                                  sum(1 << f for f in p.discrete.add),
                                  sum(1 << f for f in p.discrete.delete)))
     goal, goal_comps = compile_condition(task.goal, comps, tol, snap=strict)
-    dynamic = frozenset().union(*(e.pre_comps for e in events), *(p.pre_comps for p in processes))
+    invariants = tuple(compile_condition(c, comps, tol) for c in task.invariants)
+    dynamic = frozenset().union(*(e.pre_comps for e in events), *(p.pre_comps for p in processes),
+                                *(used for _, used in invariants))
     watched = dynamic | goal_comps | frozenset().union(*(a.pre_comps for a in actions))
     fluent_comps: dict[int, list[int]] = {}
     for cid in sorted(watched):
@@ -311,4 +315,5 @@ def _compile(task: Task, tol: Tolerances, strict: bool) -> CompiledTask:
         goal=goal, goal_comps=goal_comps, init_facts=sum(1 << f for f in task.init_facts),
         init_values=init_values, dynamic=dynamic, watched=watched,
         fluent_comps={f: tuple(c) for f, c in fluent_comps.items()}, strict=strict,
+        invariants=invariants,
     )

@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from artiplan.errors import InvalidPlanError
-from artiplan.pddl.task import Condition, GroundAction
+from artiplan.pddl.task import Condition, GroundAction, Task
 from artiplan.semantics import polynomial as P
 from artiplan.semantics.compiled import Comparison, CompiledTask, Operator
 from artiplan.semantics.flow import DT_MIN, STILL, Flow, NumericFlow, Shape, make_flow, shape_of
@@ -52,6 +52,17 @@ class EventError(InvalidPlanError):
 
 class ZenoError(InvalidPlanError):
     """Events keep firing, or critical instants keep coming, without time passing."""
+
+
+class InvariantError(InvalidPlanError):
+    """An invariant (a global constraint, an ``over all`` condition) fails as time passes."""
+
+    def __init__(self, condition: Condition, time: float, task: Task) -> None:
+        from artiplan.semantics.walks import format_condition
+
+        self.condition, self.time = condition, time
+        super().__init__(f"invariant {format_condition(condition, task)} fails at time "
+                         f"{time:.6f}")
 
 
 @dataclass(frozen=True)
@@ -229,6 +240,18 @@ class Kernel:
             active = nxt
         return active
 
+    def check_invariants(self, t: float, facts: int, values: Values, flow: Flow) -> None:
+        """Raise :class:`InvariantError` if an invariant fails on the stretch of time that
+        starts at ``t`` [s] (its truth just after ``t``, the right limit, along ``flow``)."""
+        near = self.near_comps(values)
+        for k, (fn, comps) in enumerate(self.ct.invariants):
+            cond = self.ct.task.invariants[k]
+            ok = fn(facts, values)
+            if comps & near or not ok:
+                ok = self.holds_after(cond, facts, values, flow)
+            if not ok:
+                raise InvariantError(cond, t, self.ct.task)
+
     # ------------------------------------------------------------------------------ instants
     def settle(self, t: float, facts: int, values: Values, log: EventLog) -> tuple[int, Values,
                                                                                   tuple[int, ...]]:
@@ -370,6 +393,8 @@ class Kernel:
             if until - t <= 0.0:
                 return facts, values, act
             flow = self.flow_of(act, values)
+            if self.ct.invariants:
+                self.check_invariants(t, facts, values, flow)
             if not flow.moving:
                 if segments is not None:
                     segments.append(Segment(t, until, values, flow))

@@ -6,7 +6,7 @@ A contract shared by ``semantics`` (reading, writing, validating), ``search`` an
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 
 @dataclass(frozen=True)
@@ -61,3 +61,52 @@ class Plan:
 
     def __len__(self) -> int:
         return len(self.actions)
+
+
+#: How a compiled durative action's start and end are named (``artiplan.pddl.durative``).
+DURATIVE_START, DURATIVE_END = "@start", "@end"
+
+
+def expand_durative(plan: Plan, durative: tuple[str, ...]) -> Plan:
+    """``plan`` with every durative action ``t: (N args) [d]`` as its compiled start at ``t``
+    and end at ``t + d`` (other lines unchanged). Raises ValueError for a durative action
+    without a duration."""
+    names = {n.lower(): n for n in durative}
+    if not names:
+        return plan
+    out: list[TimedAction] = []
+    for a in plan.actions:
+        name = names.get(a.name.lower())
+        if name is None:
+            out.append(a)
+            continue
+        if a.duration is None:
+            raise ValueError(f"durative action {a.signature} at {a.time:g} needs a duration "
+                             "(t: (name args) [d])")
+        out.append(TimedAction(a.time, name + DURATIVE_START, a.args, line=a.line))
+        out.append(TimedAction(round(a.time + a.duration, 9), name + DURATIVE_END, a.args,
+                               line=a.line))
+    return Plan(tuple(sorted(out, key=lambda x: x.time)), plan.events, plan.end)
+
+
+def fold_durative(plan: Plan, durative: tuple[str, ...]) -> Plan:
+    """The inverse of :func:`expand_durative`: each compiled start with the next end of the
+    same action and arguments as one line ``t: (N args) [d]``."""
+    if not durative:
+        return plan
+    starts = {n.lower() + DURATIVE_START: n for n in durative}
+    ends = {n.lower() + DURATIVE_END: n for n in durative}
+    out: list[TimedAction] = []
+    open_runs: dict[tuple[str, tuple[str, ...]], list[int]] = {}
+    for a in sorted(plan.actions, key=lambda x: x.time):
+        key = a.name.lower()
+        if key in starts:
+            name = starts[key]
+            open_runs.setdefault((name, a.args), []).append(len(out))
+            out.append(TimedAction(a.time, name, a.args, duration=0.0, line=a.line))
+        elif key in ends and open_runs.get((ends[key], a.args)):
+            k = open_runs[(ends[key], a.args)].pop(0)
+            out[k] = replace(out[k], duration=round(a.time - out[k].time, 6))
+        else:
+            out.append(a)
+    return Plan(tuple(out), plan.events, plan.end)

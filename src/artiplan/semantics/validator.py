@@ -20,6 +20,9 @@ What is checked, exactly (the kernel, :mod:`artiplan.semantics.kernel`, does the
   preconditions are not permitted to be satisfied in the initial state"), unless the caller
   accepts it (``initial_events=True``: the events fire at time 0).
 * An action the task does not know (or an event written as an action) is "bad operator".
+* A durative action ``t: (N args) [d]`` is its compiled start at ``t`` and end at ``t + d``;
+  invariants (global constraints, ``over all`` conditions) must hold on every stretch of time
+  (kind ``invariant``), and ENHSP's global constraints in the initial state too.
 """
 
 from __future__ import annotations
@@ -32,8 +35,8 @@ from artiplan.pddl.task import Condition, GroundAction, Task
 from artiplan.semantics.cache import per_task
 from artiplan.semantics.compiled import CompiledTask, Operator, compile_task
 from artiplan.semantics.interference import interferes
-from artiplan.semantics.kernel import EventError, EventLog, Kernel, Segment
-from artiplan.semantics.plan import Plan, TimedAction, TimedEvent
+from artiplan.semantics.kernel import EventError, EventLog, InvariantError, Kernel, Segment
+from artiplan.semantics.plan import Plan, TimedAction, TimedEvent, expand_durative
 from artiplan.semantics.state import State
 from artiplan.semantics.trajectory import Trajectory, TrajectoryRow
 from artiplan.semantics.walks import fluent_values, format_condition, holds, unsatisfied_parts
@@ -241,6 +244,10 @@ def run_plan(
     """
     ct = compile_task(task, tol)
     run = _Run(ct, Kernel(ct), Trajectory(task.fluents), tolerance, check, tick)
+    try:
+        plan = expand_durative(plan, task.durative)
+    except ValueError as exc:
+        return ValidationReport(False, str(exc), "bad-operator", 0, 0.0)
     traj = run.traj
     traj.rows.append(TrajectoryRow(0.0, "init", ct.init_values, "init"))
     report = ValidationReport(True, trajectory=traj, events=traj.events)
@@ -268,6 +275,10 @@ def run_plan(
         traj.end = t
     except _Failure as f:
         report = f.report
+        report.trajectory, report.events = traj, traj.events
+    except InvariantError as exc:
+        report = ValidationReport(False, str(exc), "invariant", time=exc.time,
+                                  condition=format_condition(exc.condition, task))
         report.trajectory, report.events = traj, traj.events
     except (InvalidPlanError, ZeroDivisionError) as exc:  # Zeno, unsettled events, x / 0
         at = traj.rows[-1].time if traj.rows else 0.0
