@@ -34,6 +34,7 @@ from artiplan.world.rotations import (
     rotation_axis,
 )
 from artiplan.world.servo import Servo, ServoGains
+from artiplan.world.turning import DEFAULT_EXTENT_DEG, EXTRA_DEG, Turn
 
 
 @dataclass(frozen=True)
@@ -183,6 +184,7 @@ class World:
                 self._servo_step(self.time + h, h)
             self.hands.control(h)
             mujoco.mj_step(self.model, self.data)
+            self.hands.after_step()
         if not np.all(np.isfinite(self.data.qpos)):
             raise FloatingPointError(f"physics diverged at t = {self.time:.3f} s")
 
@@ -200,6 +202,7 @@ class World:
         direction: int,
         speed_deg_s: float = 10.0,
         reference: Configuration | None = None,
+        extent_deg: float | None = None,
     ) -> None:
         """Hold ``hold_link`` and turn its neighbour ``rotate_link`` about their joint.
 
@@ -207,6 +210,9 @@ class World:
         representation nearest ``reference`` (the plan's prediction; default: the last one read).
         ``xy-axes`` turns about the world vertical; ``z-axis`` about the horizontal normal of
         the link's vertical plane. The links tip-ward of ``rotate_link`` are carried.
+        ``extent_deg``: how far the turn is meant to go (the hands choose grasps that can do
+        it; default :data:`artiplan.world.turning.DEFAULT_EXTENT_DEG`). Hands that find no
+        way to do it raise a ``RuntimeError`` (nothing is held then).
         """
         k, j = self.obj.index(hold_link), self.obj.index(rotate_link)
         if j != k + 1:
@@ -214,7 +220,11 @@ class World:
         if direction not in (1, -1):
             raise ValueError("direction must be +1 (increase) or -1 (decrease)")
         self.stop(release=True)
-        hold_hand, rot_hand = self.hands.assign(hold_link, rotate_link)
+        conf = self.true_configuration(reference)
+        extent = DEFAULT_EXTENT_DEG if extent_deg is None else extent_deg + EXTRA_DEG
+        turn = Turn(j, direction * rotation_axis(plane, conf.theta[j - 1]),
+                    self.data.xpos[self._ids[j - 1]].copy(), extent)
+        hold_hand, rot_hand = self.hands.assign(hold_link, rotate_link, turn)
         approach = getattr(self.hands, "approach", None)
         if approach is not None:  # arms that take time to reach (the world runs meanwhile)
             pairs = [(hold_hand, hold_link)] if k > 1 else []
