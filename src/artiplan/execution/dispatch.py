@@ -61,7 +61,10 @@ def dispatch(
         except (ValueError, RuntimeError, FloatingPointError) as exc:
             raise ActionFailed(f"{action.signature}: {exc}") from exc
         sign = "+" if direction > 0 else "-"
-        return f"hold {hold}, rotate {turn} on {plane} {sign}{speed:g} deg/s"
+        limit = getattr(world, "turn_limit", None)
+        note = (f" (stops after {limit[0]:.0f} of {extent:.0f} deg: {limit[1]})"
+                if limit is not None and extent is not None else "")
+        return f"hold {hold}, rotate {turn} on {plane} {sign}{speed:g} deg/s{note}"
     raise ActionFailed(f"no hand command for {action.signature}")
 
 

@@ -63,7 +63,7 @@ class ApproachMotion(PairChoice):
     limits: Limits
     _planned: dict[str, tuple[str, int]]
     _target_qd: dict[str, Vec]
-    _released: dict[str, str]
+    _no_contact: dict[str, set[str]]
     _active: tuple[float, TimedPath, tuple[str, ...]] | None
     close_in: Callable[[str, str], None]
     last_approach_clearance: dict[str, tuple[float, float]]
@@ -85,7 +85,7 @@ class ApproachMotion(PairChoice):
             self._planned[h] = (link, cands[h].index)  # the grasp then keeps this candidate
         moving = tuple(h for h in self.names if h in legs)
         backoff = self._plan_backoff()
-        starts = {h: self._target_q[h].copy() for h in self.names}
+        starts = {h: self._actual(h) for h in self.names}
         if backoff is not None:
             starts.update(backoff.split_end())
         transfer = self._plan_transfer(moving, starts, legs, cands)
@@ -119,7 +119,7 @@ class ApproachMotion(PairChoice):
             if self._held[h] is not None:
                 self.release(h)  # type: ignore[attr-defined]
         moving = tuple(h for h in self.names if h in hands)
-        path = [np.concatenate([self._target_q[h] for h in moving]),
+        path = [np.concatenate([self._actual(h) for h in moving]),
                 np.concatenate([self._backed_off(h, distance) for h in moving])]
         self._run(moving, TimedPath(path, self.limits, duration_s), advance)
 
@@ -129,11 +129,10 @@ class ApproachMotion(PairChoice):
         near = tuple(h for h in self.names if self._held[h] is None and self._near_object(h))
         if not near:
             return None
-        start = np.concatenate([self._target_q[h] for h in near])
+        start = np.concatenate([self._actual(h) for h in near])
         goal = np.concatenate([self._backed_off(h, APPROACH_RETREAT_M) for h in near])
         self.checker.sync(self.data.qpos)
-        grips = self.grip_pairs({h: self._released[h] for h in near if h in self._released})
-        query = Query(near, grips, NEAR_CLEARANCE_M)
+        query = Query(near, self._contacts_off(near), NEAR_CLEARANCE_M)
         path = plan_path(self.checker, self._ramp(query, start, goal), start, goal,
                          self._bounds(near))
         if path is None:  # nothing better found: straight back (the physics has the say)
@@ -153,7 +152,7 @@ class ApproachMotion(PairChoice):
         # A leg out of reach ends the transfer on the grasp itself: its gripper meets its link.
         grips = self.grip_pairs({h: cands[h].link for h in moving
                                  if np.array_equal(legs[h][0], legs[h][-1])})
-        query = self._ramp(Query(moving, grips), start, goal)
+        query = self._ramp(Query(moving, grips | self._contacts_off(moving)), start, goal)
         path = plan_path(chk, query, start, goal, self._bounds(moving))
         if path is None:
             raise NotExecutableError(
@@ -167,7 +166,7 @@ class ApproachMotion(PairChoice):
         """The final legs again, to where the grasps are now (the links moved while the arms
         travelled): one segment from each pre-grasp pose to its grasp re-solved, if that is
         collision-free (else the legs as planned)."""
-        start = np.concatenate([self._target_q[h] for h in moving])
+        start = np.concatenate([self._actual(h) for h in moving])
         goal = []
         for h in moving:
             c = cands[h]
@@ -182,6 +181,15 @@ class ApproachMotion(PairChoice):
             return final
         return TimedPath(path, self.limits, final.duration)
 
+    def _contacts_off(self, hands: tuple[str, ...]) -> frozenset[tuple[int, int]]:
+        """The geom pairs of ``hands``' grippers and the links the physics lets them touch now
+        (a link let go of and not yet left): the checks allow them too."""
+        out: frozenset[tuple[int, int]] = frozenset()
+        for h in hands:
+            for link in self._no_contact[h]:
+                out |= self.grip_pairs({h: link})
+        return out
+
     def _ramp(self, query: Query, start: Vec, goal: Vec) -> Query:
         """``query`` with its clearance relaxed near a start or goal nearer than it."""
         chk = self.checker
@@ -191,6 +199,12 @@ class ApproachMotion(PairChoice):
             clear, _ = chk.clearance(chk.split(query.hands, q), Query(query.hands, query.allowed))
             ends.append((q, clear))
         return Query(query.hands, query.allowed, ramped(ends, full))
+
+    def _actual(self, hand: str) -> Vec:
+        """Where ``hand``'s arm is [rad] (not where it was commanded: a tracking arm lags),
+        within its joint limits. Motions start here."""
+        q = self.data.qpos[self._q[hand]]
+        return np.clip(q, self._lo[hand], self._hi[hand])
 
     def _bounds(self, hands: tuple[str, ...]) -> tuple[Vec, Vec]:
         lo = np.concatenate([self._lo[h] for h in hands])

@@ -189,7 +189,6 @@ class BaxterHands(ApproachMotion, Hands):
         self.last_pregrasp = {}
         #: Per approach, each moving hand's planned grasp-point trace [m] (for pictures).
         self.last_paths = []
-        self._released: dict[str, str] = {}
         #: Per hand, the links its gripper has no contacts with (held, closing in on, or let
         #: go of and not yet left); the link it is closing in on.
         self._no_contact: dict[str, set[str]] = {h: set() for h in self.names}
@@ -246,10 +245,7 @@ class BaxterHands(ApproachMotion, Hands):
     def release(self, hand: str) -> None:
         """Open ``hand``: the weld goes off; its gripper collides with the link again once it
         has left it (:meth:`after_step`)."""
-        link = self._held.get(hand)
         super().release(hand)
-        if link is not None:
-            self._released[hand] = link
 
     def close_in(self, hand: str, link: str) -> None:
         """The gripper's final leg to ``link`` begins: no contacts between them (the fingers

@@ -35,9 +35,11 @@ RETRY_MISS = 0.05
 #: Grasp points along the link [fraction of its length from the base-end joint]: the centre
 #: first, then a quarter length away from the joint shared with the other grasped link.
 CENTRE, OFF_CENTRE = 0.5, 0.25
-#: ... and on the rotated link also nearer its pivot (when the link it carries folds back
-#: over its outer half); not nearer: the turn then loads the wrist (measured: a held link
-#: drifting 9 deg on a grasp at 0.25).
+#: A second tier of grasps (tried when the first gives no collision-free pair): the approach
+#: axis tilted this far [deg] along the link either way, and one more point on the held link
+#: (toward the rotated one) and on the rotated link (toward its pivot; not nearer than this:
+#: at 0.25 the rotation's tracking diverged, world.md).
+TILT_DEG = 30.0
 NEAR_PIVOT = 0.35
 #: Pull of the IK's null-space term toward mid-range joint angles [rad per iteration].
 NULLSPACE_GAIN = 0.05
@@ -97,6 +99,7 @@ class Candidate:
             when the candidate's pair is checked).
         solo: '' when the candidate is collision-free on its own (final leg, grasp, turn;
             the other arm aside), else why not; None until checked (for ``turn_of``).
+        safe: How far [deg] its turn is collision-free on its own (-1: not even the grasp).
     """
 
     hand: str
@@ -111,6 +114,7 @@ class Candidate:
     sweep_score: float = 0.0
     leg: list[Vec] = field(default_factory=list)
     solo: str | None = None
+    safe: float = float("inf")
     turn_of: object = None
 
     @property
@@ -157,16 +161,32 @@ class GraspChoice:
             return (CENTRE, CENTRE + OFF_CENTRE)
         return (CENTRE, CENTRE - OFF_CENTRE, CENTRE + OFF_CENTRE)
 
+    def extra_fractions(self, link: str) -> tuple[float, ...]:
+        """More grasp points on ``link``, tried only when the first ones give no
+        collision-free pair (:meth:`grasp_poses`, tier 2)."""
+        hold, rotate = self._roles
+        if link == hold:
+            return (CENTRE + OFF_CENTRE,)
+        if link == rotate:
+            return (NEAR_PIVOT,)
+        return ()
+
     def grasp_poses(self, hand: str, link: str, n_turns: int = 8) -> list[tuple[Vec, Vec]]:
-        """Candidate hand poses on ``link``: at each of :meth:`grasp_fractions`, the hand's z
-        axis (its approach) perpendicular to the link, turned about it in ``n_turns`` steps,
-        x along +-link."""
+        """Candidate hand poses on ``link``. Tier 1 (the first :meth:`tier_size`): at each of
+        :meth:`grasp_fractions`, the hand's z axis (its approach) perpendicular to the link,
+        turned about it in ``n_turns`` steps, x along +-link. Tier 2: the same points with the
+        approach axis tilted TILT_DEG either way along the link, and :meth:`extra_fractions`
+        perpendicular. Consecutive poses differ by half a turn about the hand's axis."""
         b = self.model.body(link).id
         u = -self.data.xmat[b].reshape(3, 3)[:, 2]
         length = 2.0 * float(self.model.geom(f"{link}_geom").size[1])
         shoulder = self.data.xpos[self.model.body(f"baxter_{hand}_upper_shoulder").id]
+        tilt = np.radians(TILT_DEG)
+        sets = [(f, 0.0) for f in self.grasp_fractions(link)]
+        sets += [(f, t) for t in (tilt, -tilt) for f in self.grasp_fractions(link)]
+        sets += [(f, 0.0) for f in self.extra_fractions(link)]
         poses = []
-        for f in self.grasp_fractions(link):
+        for f, t in sets:
             point = self.data.xpos[b] + f * length * u
             z0 = point - shoulder
             z0 -= np.dot(z0, u) * u
@@ -176,24 +196,48 @@ class GraspChoice:
             for i in range(n_turns):
                 a = 2.0 * np.pi * i / n_turns
                 z = np.cos(a) * z0 + np.sin(a) * np.cross(u, z0)
-                for x in (u, -u):
+                z = np.cos(t) * z + np.sin(t) * u
+                along = u - np.dot(u, z) * z
+                along /= np.linalg.norm(along)
+                for x in (along, -along):
                     mat = np.column_stack([x, np.cross(z, x), z])
                     quat = np.empty(4)
                     mujoco.mju_mat2Quat(quat, mat.ravel())
                     poses.append((point - self._depth * z, quat))
         return poses
 
-    def candidates(self, hand: str, link: str) -> list[Candidate]:
-        """Every candidate grasp of ``link`` by ``hand``, solved and scored, best first (the
-        other arm ignored: the pair is scored in :meth:`_pair_score`). Cached per state."""
+    def tier_size(self, link: str, n_turns: int = 8) -> int:
+        """How many of :meth:`grasp_poses` are tier 1."""
+        return 2 * n_turns * len(self.grasp_fractions(link))
+
+    def candidates(self, hand: str, link: str, tier: int = 1) -> list[Candidate]:
+        """The candidate grasps of ``link`` by ``hand`` (tier 1, or tiers 1 and 2: see
+        :meth:`grasp_poses`), solved and scored, best first (the other arm ignored: the pair
+        is checked in :mod:`artiplan.world.pairs`). Cached per state."""
         key = (hand, link, self._roles, self.data.time, self.data.qpos.tobytes())
-        cached = self._cand_cache.get(key)
+        first = self._cand_cache.get((*key, 1))
+        cached = self._cand_cache.get((*key, tier)) or (first if tier == 1 else None)
         if cached is not None:
             return cached
+        poses = self.grasp_poses(hand, link)
+        start = 0 if first is None else self.tier_size(link)
+        out = self._solve_candidates(hand, link, poses, start, self.tier_size(link)
+                                     if tier == 1 else len(poses))
+        out = sorted((first or []) + out, key=lambda c: c.score)
+        self._cand_cache[(*key, tier)] = out
+        while len(self._cand_cache) > 16:  # only the current motion's grasps matter
+            self._cand_cache.pop(next(iter(self._cand_cache)))
+        return out
+
+    def _solve_candidates(
+        self, hand: str, link: str, poses: list[tuple[Vec, Vec]], start: int, stop: int
+    ) -> list[Candidate]:
+        """Candidates of ``poses[start:stop]`` (IK, reach, clearance, limit room)."""
         out: list[Candidate] = []
         q_now = self.data.qpos[self._q[hand]].copy()
-        for index, (pos, quat) in enumerate(self.grasp_poses(hand, link)):
-            q, miss = self._flipped(hand, out[-1]) if index % 2 else (None, 0.0)
+        for index in range(start, stop):
+            pos, quat = poses[index]
+            q, miss = self._flipped(hand, out[-1]) if index % 2 and out else (None, 0.0)
             if q is None:
                 q, miss = self._solve_grasp(hand, link, pos, quat)
             else:  # put ik_data's kinematics at q
@@ -206,10 +250,6 @@ class GraspChoice:
             score += 0.05 * max(0.0, LIMIT_MARGIN - self.room(hand, q))
             score += 0.002 * float(np.linalg.norm(q - q_now))  # stay near where the arm is
             out.append(Candidate(hand, link, index, pos, quat, q, miss, score))
-        out.sort(key=lambda c: c.score)
-        self._cand_cache[key] = out
-        while len(self._cand_cache) > 8:  # only the current motion's grasps matter
-            self._cand_cache.pop(next(iter(self._cand_cache)))
         return out
 
     def _solve_grasp(self, hand: str, link: str, pos: Vec, quat: Vec) -> tuple[Vec, float]:

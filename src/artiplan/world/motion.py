@@ -177,6 +177,9 @@ class ArmChecker:
         need = query.clearance
         if callable(need):
             need = need(flat if flat is not None else np.concatenate(list(q.values())))
+        if need > MARGIN_M:
+            raise ValueError(f"a clearance of {need} m is beyond the contact margin "
+                             f"({MARGIN_M} m): pairs that far apart are not seen")
         self.set_arms(q)
         return all(dist >= need for _, _, dist in self.contacts(query))
 

@@ -56,6 +56,9 @@ TURN_IK_ITERATIONS = 30
 #: Score per share of the planned turn the rotating hand cannot follow (a whole turn missed
 #: weighs like a 1 cm collision-margin shortfall times 50: following comes first).
 SHORT_WEIGHT = 2.0
+#: A pair whose turn is collision-free for less than this [deg] is not taken (the world
+#: stops a turn where its collision-free part ends: the loop sees it and re-plans).
+MIN_TURN_DEG = 5.0
 #: A turned pose with a joint nearer than this [rad] to its limit is not followed (the servo
 #: fights the limit; e1 there is a straight, singular elbow: measured, the tracking diverged).
 ROOM_MIN = 0.1
@@ -80,6 +83,7 @@ class PairChoice(GraspChoice):
 
     checker: ArmChecker
     approach_s: float
+    turn_limit: tuple[float, str] | None = None
     _target_q: dict[str, Vec]
     _held: dict[str, str | None]
 
@@ -181,10 +185,12 @@ class PairChoice(GraspChoice):
 
     def _free(
         self, cands: list[Candidate], rot: Candidate | None, turn: Turn | None, pairs: str
-    ) -> str:
-        """'' if ``cands`` (one or both arms' candidates; ``rot`` the rotating one) are
-        collision-free (module docstring), else why not. ``pairs``: ``solo`` (everything but
-        the other arm) or ``arms`` (only the arms against each other)."""
+    ) -> tuple[str, float]:
+        """('' or why not, how far [deg] the turn is collision-free): ``cands`` (one or both
+        arms' candidates; ``rot`` the rotating one) checked as the module docstring says.
+        ``pairs``: ``solo`` (everything but the other arm), ``arms`` (only the arms against
+        each other) or ``all``. A collision at the grasp or on the final leg: -1; a turn
+        collision-free to its end (or no turn): the turn's extent (inf)."""
         moving = tuple(c.hand for c in cands)
         chk = self.checker
         chk.sync(self.data.qpos)
@@ -195,7 +201,7 @@ class PairChoice(GraspChoice):
         q_grasp = {c.hand: c.q for c in cands}
         why = self._why(chk, q_grasp, query)
         if why:
-            return f"at the grasp ({why})"
+            return f"at the grasp ({why})", -1.0
         if self.approach_s > 0:
             legs = {c.hand: self._leg(c) for c in cands}
             span = max(float(np.linalg.norm(leg[-1] - leg[0])) for leg in legs.values())
@@ -203,21 +209,28 @@ class PairChoice(GraspChoice):
             for i in range(n + 1):
                 why = self._why(chk, {h: along(leg, i / n) for h, leg in legs.items()}, query)
                 if why:
-                    return f"final leg {i}/{n} in contact ({why})"
+                    return f"final leg {i}/{n} in contact ({why})", -1.0
         if turn is None:
-            return ""
+            return "", np.inf
+        steps = turn.steps()
+        followed = steps[: len(rot.sweep)] if rot is not None else steps
         base = chk.data.qpos.copy()
+        safe = 0.0
         try:
-            for i, deg in enumerate(turn.steps()[: len(rot.sweep) if rot is not None else None]):
+            for i, deg in enumerate(followed):
                 adr, quat = turned_joint(self.model, self.data, turn, deg)
                 chk.data.qpos[adr : adr + 4] = quat
                 q = {**q_grasp, **({rot.hand: rot.sweep[i]} if rot is not None else {})}
                 why = self._why(chk, q, query)
                 if why:
-                    return f"turned {deg:.0f} deg ({why})"
+                    return f"turned {deg:.0f} deg ({why})", safe
+                safe = deg
         finally:
             chk.data.qpos[:] = base
-        return ""
+        if len(followed) < len(steps):
+            assert rot is not None
+            return f"the {rot.hand} arm follows the turn only {safe:.0f} deg", safe
+        return "", turn.degrees
 
     @staticmethod
     def _why(chk: ArmChecker, q: dict[str, Vec], query: Query) -> str:
@@ -249,46 +262,59 @@ class PairChoice(GraspChoice):
         not (''). The rotating hand's turn path is solved for each examined candidate (its
         sweep score only adds, so they are examined in score order until none can enter the
         best ``keep``). Without ``avoid_collisions``: the best one, unchecked."""
-        cands = self.candidates(hand, link)
-        reachable = [c for c in cands if c.reachable]
-        if not self.avoid_collisions or not reachable:
-            best = min(cands, key=lambda c: c.total)
-            if rotating and best.reachable and not best.sweep:
-                self._sweep(best)
-            return [best], ""
-        done: list[Candidate] = []
         first, examined = "", 0
-        for c in reachable:
-            if len(done) >= keep and c.score >= sorted(d.total for d in done)[keep - 1]:
-                break
-            if c.solo is None or c.turn_of is not turn:
-                c.turn_of = turn
-                c.solo = self._free([c], None, None, "solo")  # the grasp first: cheap
-                if rotating and turn is not None and not c.solo:
-                    self._turn_path(c, turn)
-                elif rotating and turn is None and not c.sweep:
-                    self._sweep(c)
-                if not c.solo and turn is not None:
-                    c.solo = self._free([c], c if rotating else None, turn, "solo")
-            examined += 1
-            if c.solo:
-                first = first or c.solo
-                continue
-            done.append(c)
-        if not done:
-            first = (f"none of the {examined} reachable grasps of {link} by the {hand} hand is "
-                     f"free, the best: {first}")
-        return sorted(done, key=lambda c: c.total)[:keep], first
+        for tier in (1, 2):
+            cands = self.candidates(hand, link, tier)
+            reachable = [c for c in cands if c.reachable]
+            if not self.avoid_collisions or not reachable:
+                if tier == 1 and self.avoid_collisions:
+                    continue  # none reaches: maybe a tilted grasp does
+                best = min(cands, key=lambda c: c.total)
+                if rotating and best.reachable and not best.sweep:
+                    self._sweep(best)
+                return [best], ""
+            done: list[Candidate] = []
+            for c in reachable:
+                if len(done) >= keep and c.score >= sorted(d.total for d in done)[keep - 1]:
+                    break
+                if c.solo is None or c.turn_of is not turn:
+                    self._check_alone(c, turn, rotating)
+                    examined += 1
+                if c.solo:
+                    first = first or c.solo
+                if c.safe < min_turn(turn):
+                    continue
+                done.append(c)
+            if done:
+                return sorted(done, key=lambda c: c.total)[:keep], ""
+        first = (f"none of the {examined} reachable grasps of {link} by the {hand} hand is "
+                 f"free, the best: {first}")
+        return [], first
+
+    def _check_alone(self, c: Candidate, turn: Turn | None, rotating: bool) -> None:
+        """``c.solo``: why ``c`` collides on its own ('' if it does not): grasp and final leg
+        first (cheap), then the turn (the rotating hand's turn path is solved for it)."""
+        c.turn_of = turn
+        c.solo, c.safe = self._free([c], None, None, "solo")
+        if rotating and turn is not None and not c.solo:
+            self._turn_path(c, turn)
+        elif rotating and turn is None and not c.sweep:
+            self._sweep(c)
+        if not c.solo and turn is not None:
+            c.solo, c.safe = self._free([c], c if rotating else None, turn, "solo")
 
     def plan_pair(
         self, hold_hand: str, hold_link: str | None, rot_hand: str, rot_link: str,
         turn: Turn | None = None,
-    ) -> tuple[float, Candidate | None, Candidate | None, str]:
-        """(score, holding candidate, rotating candidate, '' or why none is free) of the best
-        pair; ``hold_link`` None: the holding arm grasps nothing (L1 is clamped). With
-        ``avoid_collisions`` the best collision-free pair: the candidates free on their own
-        (:meth:`_free_best`), then the pairs of those whose arms stay apart, in score order;
-        (inf, None, None, why) when there is none."""
+    ) -> tuple[float, Candidate | None, Candidate | None, str, float]:
+        """(score, holding candidate, rotating candidate, '' or why none is free, how far
+        [deg] the turn is collision-free) of the best pair; ``hold_link`` None: the holding
+        arm grasps nothing (L1 is clamped). With ``avoid_collisions`` the best pair whose
+        grasps and final legs are collision-free (the candidates free on their own,
+        :meth:`_free_best`, then the pairs of those, the arms against each other, in score
+        order): the first one free over the whole turn, else the one that gets furthest
+        (SHORT_WEIGHT per share of the turn missed), if at least :func:`min_turn`;
+        (inf, None, None, why, -1) when there is none."""
         keep = KEEP_CHECKED if self.avoid_collisions else 1
         rots, why_r = self._free_best(rot_hand, rot_link, keep, turn, True)
         holds: list[Candidate | None] = [None]
@@ -296,24 +322,32 @@ class PairChoice(GraspChoice):
         if hold_link is not None:
             holds, why_h = self._free_best(hold_hand, hold_link, keep, turn, False)  # type: ignore[assignment]
         if not rots or not holds:
-            return INFEASIBLE * 10, None, None, why_r or why_h
+            return INFEASIBLE * 10, None, None, why_r or why_h, -1.0
         pairs = []
         for h in holds:
             q_hold = h.q if h is not None else self._target_q[hold_hand]
             pairs += [(self._pair_score(h, r, q_hold), k, h, r) for k, r in enumerate(rots)]
         pairs.sort(key=lambda p: (p[0], p[1]))
         if not self.avoid_collisions or not pairs[0][3].reachable:
-            return pairs[0][0], pairs[0][2], pairs[0][3], ""
-        first = ""
+            return pairs[0][0], pairs[0][2], pairs[0][3], "", np.inf
+        first, best = "", None
+        full = turn.degrees if turn is not None else np.inf
         for score, _, h, r in pairs[:MAX_PAIRS]:
             # One arm: the idle one where it is parked (against the arm and the turned links).
-            why = self._free([r], r, turn, "all") if h is None else \
+            why, safe = self._free([r], r, turn, "all") if h is None else \
                 self._free([h, r], r, turn, "arms")
-            if not why:
-                return score, h, r, ""
-            first = first or why
+            safe = min(safe, r.safe, h.safe if h is not None else np.inf)
+            if safe >= full:
+                return score, h, r, "", safe
+            first = first or why or r.solo or (h.solo if h is not None else "") or ""
+            if safe >= min_turn(turn):
+                total = score + SHORT_WEIGHT * (1.0 - safe / full)
+                if best is None or total < best[0]:
+                    best = (total, h, r, first, safe)
+        if best is not None:
+            return best
         n = min(len(pairs), MAX_PAIRS)
-        return INFEASIBLE * 10, None, None, f"none of {n} pairs is free, the best: {first}"
+        return INFEASIBLE * 10, None, None, f"none of {n} pairs is free, the best: {first}", -1.0
 
     def best_grasp(self, hand: str, link: str) -> Candidate:
         """The best candidate for ``hand`` alone, the other arm where it is now."""
@@ -336,19 +370,29 @@ class PairChoice(GraspChoice):
         is collision-free."""
         self._roles = (hold_link, rotate_link)
         clamped = hold_link == self._clamped  # L1: held by the fixture, not by a hand
-        best: tuple[float, str, Candidate | None, str, Candidate | None, str] | None = None
+        best: tuple[float, str, Candidate | None, str, Candidate | None, str, float] | None = None
         for hold_hand, rot_hand in (self.names, self.names[::-1]):
-            s, h, r, why = self.plan_pair(hold_hand, None if clamped else hold_link, rot_hand,
-                                          rotate_link, turn)
+            s, h, r, why, safe = self.plan_pair(hold_hand, None if clamped else hold_link,
+                                                rot_hand, rotate_link, turn)
             if best is None or s < best[0] or (s == best[0] and not why):
-                best = (s, hold_hand, h, rot_hand, r, why)
+                best = (s, hold_hand, h, rot_hand, r, why, safe)
         assert best is not None
-        _, hold_hand, h, rot_hand, r, why = best
+        _, hold_hand, h, rot_hand, r, why, safe = best
         if r is None:
             raise NotExecutableError(
                 f"no collision-free grasps to hold {hold_link} and rotate {rotate_link}"
                 f" ({why})")
+        #: How far [deg] the turn may go (None: all of it): the world stops it there.
+        self.turn_limit = (safe, why) if turn is not None and safe < turn.degrees else None
         self._plan = {rot_hand: (r, self.data.time)}
         if h is not None:
             self._plan[hold_hand] = (h, self.data.time)
         return hold_hand, rot_hand
+
+
+def min_turn(turn: Turn | None) -> float:
+    """The least a turn must go collision-free [deg] for its pair to be taken: MIN_TURN_DEG
+    (all of a shorter turn)."""
+    if turn is None:
+        return 0.0
+    return min(MIN_TURN_DEG, turn.degrees)
