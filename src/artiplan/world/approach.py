@@ -88,17 +88,20 @@ class ApproachMotion(PairChoice):
         starts = {h: self._actual(h) for h in self.names}
         if backoff is not None:
             starts.update(backoff.split_end())
-        transfer = self._plan_transfer(moving, starts, legs, cands)
+        goals = {h: legs[h][0] for h in moving}
+        goals.update(self.idle_goals(moving, starts))  # an idle arm goes home, out of the way
+        travelling = tuple(h for h in self.names if h in goals)
+        transfer = self._plan_transfer(travelling, starts, goals, legs, cands)
         steps = max(len(leg) for leg in legs.values()) - 1
         final = TimedPath([np.concatenate([along(legs[h], k / steps) for h in moving])
                            for k in range(steps + 1)], self.limits)
         spent = final.duration + (backoff.path.duration if backoff else 0.0)
         transfer = TimedPath(transfer.waypoints, self.limits, self.approach_s - spent)
         self.last_pregrasp = {h: legs[h][0] for h in moving}
-        self._record_paths([backoff, _Stage(moving, transfer), _Stage(moving, final)])
+        self._record_paths([backoff, _Stage(travelling, transfer), _Stage(moving, final)])
         if backoff is not None:
             self._run(backoff.hands, backoff.path, advance, 0.0)
-        self._run(moving, transfer, advance, 0.0)
+        self._run(travelling, transfer, advance, 0.0)
         final = self._retarget(moving, cands, final)
         for h in moving:
             self.close_in(h, cands[h].link)
@@ -140,24 +143,25 @@ class ApproachMotion(PairChoice):
         return _Stage(near, TimedPath(path, self.limits))
 
     def _plan_transfer(
-        self, moving: tuple[str, ...], starts: dict[str, Vec], legs: dict[str, list[Vec]],
-        cands: dict[str, Candidate],
+        self, moving: tuple[str, ...], starts: dict[str, Vec], goals: dict[str, Vec],
+        legs: dict[str, list[Vec]], cands: dict[str, Candidate],
     ) -> TimedPath:
-        """The collision-free joint-space motion from ``starts`` to the pre-grasp poses."""
+        """The collision-free joint-space motion of ``moving`` from ``starts`` to ``goals``
+        (the pre-grasp poses; home for an idle arm)."""
         chk = self.checker
         chk.sync(self.data.qpos)
         chk.set_arms(starts)
         start = np.concatenate([starts[h] for h in moving])
-        goal = np.concatenate([legs[h][0] for h in moving])
+        goal = np.concatenate([goals[h] for h in moving])
         # A leg out of reach ends the transfer on the grasp itself: its gripper meets its link.
-        grips = self.grip_pairs({h: cands[h].link for h in moving
+        grips = self.grip_pairs({h: cands[h].link for h in legs
                                  if np.array_equal(legs[h][0], legs[h][-1])})
         query = self._ramp(Query(moving, grips | self._contacts_off(moving)), start, goal)
         path = plan_path(chk, query, start, goal, self._bounds(moving))
         if path is None:
             raise NotExecutableError(
                 "no collision-free arm motion found to the pre-grasp poses of "
-                + ", ".join(f"{h} on {cands[h].link}" for h in moving))
+                + ", ".join(f"{h} on {cands[h].link}" for h in legs))
         return TimedPath(path, self.limits)
 
     def _retarget(

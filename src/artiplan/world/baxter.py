@@ -143,6 +143,7 @@ class BaxterHands(ApproachMotion, Hands):
             sign = np.array([1, 1, 1, 1, 1, 1, 1.0]) if h == "right" else np.ones(7)
             data.qpos[self._q[h]] = sign * np.array(HOME)
         self._target_q = {h: data.qpos[self._q[h]].copy() for h in self.names}
+        self.home = {h: self._target_q[h].copy() for h in self.names}
         mujoco.mj_forward(model, data)
         # Turn each torque motor into a PD servo inside MuJoCo: force = kp (ctrl - q) - kv qd,
         # clipped to the motor's limit as a whole. Velocity feedback in the actuator is

@@ -83,6 +83,8 @@ class PairChoice(GraspChoice):
 
     checker: ArmChecker
     approach_s: float
+    #: Per hand, the joint angles [rad] of its home pose (idle arms go there).
+    home: dict[str, Vec]
     turn_limit: tuple[float, str] | None = None
     _target_q: dict[str, Vec]
     _held: dict[str, str | None]
@@ -143,15 +145,18 @@ class PairChoice(GraspChoice):
         return c.leg
 
     def parked(self, moving: tuple[str, ...]) -> dict[str, Vec]:
-        """Where the arms not in ``moving`` will be: backed off the object if they are near
-        it (as :meth:`approach` does), else where they are commanded now."""
-        out = {}
-        for h in self.names:
-            if h in moving:
-                continue
-            near = self._held.get(h) is None and self._near_object(h)
-            out[h] = self._backed_off(h, APPROACH_RETREAT_M) if near else self._target_q[h].copy()
+        """Where the arms not in ``moving`` will be during the action: home when the arms
+        approach (:meth:`idle_goals`), else where they are commanded now."""
+        out = {h: self._target_q[h].copy() for h in self.names if h not in moving}
+        if self.approach_s > 0:
+            out.update(self.idle_goals(moving, out))
         return out
+
+    def idle_goals(self, moving: tuple[str, ...], now: dict[str, Vec]) -> dict[str, Vec]:
+        """Arms not in ``moving`` that are away from home (``now``: their joint angles) go
+        home, out of the object's way: {hand: home}."""
+        return {h: self.home[h].copy() for h in self.names
+                if h not in moving and float(np.abs(now[h] - self.home[h]).max()) > 0.05}
 
     def _near_object(self, hand: str) -> bool:
         """Whether ``hand``'s grasp point is within :data:`RETREAT_NEAR` of a link."""
@@ -255,7 +260,8 @@ class PairChoice(GraspChoice):
 
     # -- choosing -----------------------------------------------------------------------------
     def _free_best(
-        self, hand: str, link: str, keep: int, turn: Turn | None, rotating: bool
+        self, hand: str, link: str, keep: int, turn: Turn | None, rotating: bool,
+        tiers: int = 1,
     ) -> tuple[list[Candidate], str]:
         """Up to ``keep`` candidates of ``hand`` on ``link`` that are collision-free on their
         own (the other arm aside), best total score first, and why the first one examined was
@@ -264,6 +270,8 @@ class PairChoice(GraspChoice):
         best ``keep``). Without ``avoid_collisions``: the best one, unchecked."""
         first, examined = "", 0
         for tier in (1, 2):
+            if tier < tiers:
+                continue  # the pair needs the wider set: start with it
             cands = self.candidates(hand, link, tier)
             reachable = [c for c in cands if c.reachable]
             if not self.avoid_collisions or not reachable:
@@ -315,12 +323,24 @@ class PairChoice(GraspChoice):
         order): the first one free over the whole turn, else the one that gets furthest
         (SHORT_WEIGHT per share of the turn missed), if at least :func:`min_turn`;
         (inf, None, None, why, -1) when there is none."""
+        out = self._plan_pair(hold_hand, hold_link, rot_hand, rot_link, turn, 1)
+        if out[2] is None or out[4] < (turn.degrees if turn is not None else np.inf):
+            again = self._plan_pair(hold_hand, hold_link, rot_hand, rot_link, turn, 2)
+            if again[2] is not None and (out[2] is None or again[0] < out[0]):
+                return again
+        return out
+
+    def _plan_pair(
+        self, hold_hand: str, hold_link: str | None, rot_hand: str, rot_link: str,
+        turn: Turn | None, tiers: int,
+    ) -> tuple[float, Candidate | None, Candidate | None, str, float]:
+        """:meth:`plan_pair` with candidates of tiers up to ``tiers``."""
         keep = KEEP_CHECKED if self.avoid_collisions else 1
-        rots, why_r = self._free_best(rot_hand, rot_link, keep, turn, True)
+        rots, why_r = self._free_best(rot_hand, rot_link, keep, turn, True, tiers)
         holds: list[Candidate | None] = [None]
         why_h = ""
         if hold_link is not None:
-            holds, why_h = self._free_best(hold_hand, hold_link, keep, turn, False)  # type: ignore[assignment]
+            holds, why_h = self._free_best(hold_hand, hold_link, keep, turn, False, tiers)  # type: ignore[assignment]
         if not rots or not holds:
             return INFEASIBLE * 10, None, None, why_r or why_h, -1.0
         pairs = []
@@ -336,14 +356,17 @@ class PairChoice(GraspChoice):
             # One arm: the idle one where it is parked (against the arm and the turned links).
             why, safe = self._free([r], r, turn, "all") if h is None else \
                 self._free([h, r], r, turn, "arms")
-            safe = min(safe, r.safe, h.safe if h is not None else np.inf)
+            # The limit and its reason: the pair's, or a candidate's own if that comes first.
+            for c in (r, h):
+                if c is not None and c.safe < safe:
+                    why, safe = c.solo or "", c.safe
             if safe >= full:
                 return score, h, r, "", safe
-            first = first or why or r.solo or (h.solo if h is not None else "") or ""
+            first = first or why
             if safe >= min_turn(turn):
                 total = score + SHORT_WEIGHT * (1.0 - safe / full)
                 if best is None or total < best[0]:
-                    best = (total, h, r, first, safe)
+                    best = (total, h, r, why, safe)
         if best is not None:
             return best
         n = min(len(pairs), MAX_PAIRS)
