@@ -22,22 +22,27 @@ POLE_DEG = 3.0
 TRACE_RGBA = {"left": (1.0, 0.55, 0.0, 1.0), "right": (0.1, 0.45, 1.0, 1.0)}
 
 
-def _unwrap_breaks(ts: list[float], vs: list[float]) -> tuple[list[float], list[float]]:
-    """Where an angle wraps (a jump > 180 deg between samples), run the line to the edge of
-    the [0, 360] band at the interpolated crossing time and on from the other edge, instead of
-    across the plot."""
+def wrap_breaks(ts: list[float], vs: list[float]) -> tuple[list[float], list[float]]:
+    """An angle series [deg, in [0, 360)] ready to plot: where it wraps through 0/360 (a jump
+    of more than 270 deg between samples, i.e. less than 90 deg the short way) the line runs
+    to the edge of the band at the interpolated crossing time and on from the other edge;
+    other jumps of more than 180 deg (a change of the double-cover representation, or a pole)
+    break the line. Returns (times, values) with NaN at the breaks."""
     out_t: list[float] = []
     out_v: list[float] = []
     for k, (t, v) in enumerate(zip(ts, vs, strict=True)):
         prev = vs[k - 1] if k else math.nan
-        if k and not math.isnan(prev) and not math.isnan(v) and abs(v - prev) > 180.0:
+        jump = abs(v - prev) if k and not math.isnan(prev) and not math.isnan(v) else 0.0
+        if jump > 270.0:
             up = v < prev  # e.g. 350 -> 10: it went up through 360
             unwrapped = v + 360.0 if up else v - 360.0
             edge = 360.0 if up else 0.0
-            f = (edge - prev) / (unwrapped - prev)
-            tc = ts[k - 1] + f * (t - ts[k - 1])
+            tc = ts[k - 1] + (edge - prev) / (unwrapped - prev) * (t - ts[k - 1])
             out_t += [tc, tc, tc]
             out_v += [edge, math.nan, 360.0 - edge]
+        elif jump > 180.0:
+            out_t.append(t)
+            out_v.append(math.nan)
         out_t.append(t)
         out_v.append(v)
     return out_t, out_v
@@ -74,9 +79,9 @@ def plot_run(log: dict[str, Any], path: str | Path, title: str = "") -> Path:
     """Predicted (dashed) vs perceived (solid) theta and gamma of every moving link, and the
     per-link direction error with the monitor's thresholds. Goal links are drawn thick with
     their target angles (dotted), the other links thin; theta is left out near the poles
-    (where it is not observable); a wrap through 0/360 leaves at one edge and comes back at
-    the other. Happenings dotted grey, re-plans red, human interventions orange dashed (in the
-    legend). Returns the PNG path."""
+    (where it is not observable); a wrap through 0/360 leaves at one edge and comes back
+    at the other (:func:`wrap_breaks`). Happenings dotted grey, re-plans red, human
+    interventions orange dashed (in the legend). Returns the PNG path."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -97,7 +102,7 @@ def plot_run(log: dict[str, Any], path: str | Path, title: str = "") -> Path:
                 vs = [s[src][key][i] for s in samples]
                 if key == "theta":
                     vs = _off_pole(vs, [s[src]["gamma"][i] for s in samples])
-                t, v = _unwrap_breaks(ts, vs)
+                t, v = wrap_breaks(ts, vs)
                 name = f"L{i + 1}{' (goal)' if goal else ''} {src}"
                 ax.plot(t, v, ls=ls, color=c, lw=lw, alpha=alpha,
                         label=name if key == "theta" else None)

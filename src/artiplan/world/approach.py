@@ -156,7 +156,9 @@ class ApproachMotion(PairChoice):
         # A leg out of reach ends the transfer on the grasp itself: its gripper meets its link.
         grips = self.grip_pairs({h: cands[h].link for h in legs
                                  if np.array_equal(legs[h][0], legs[h][-1])})
-        query = self._ramp(Query(moving, grips | self._contacts_off(moving)), start, goal)
+        # Not the links the grippers have just let go of: the ramp lets them out of those
+        # near the start only (afterwards the physics collides with them again).
+        query = self._ramp(Query(moving, grips), start, goal)
         path = plan_path(chk, query, start, goal, self._bounds(moving))
         if path is None:
             raise NotExecutableError(
