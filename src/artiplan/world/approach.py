@@ -63,6 +63,7 @@ class ApproachMotion(PairChoice):
     limits: Limits
     _planned: dict[str, tuple[str, int]]
     _target_qd: dict[str, Vec]
+    _target_qdd: dict[str, Vec]
     _no_contact: dict[str, set[str]]
     _active: tuple[float, TimedPath, tuple[str, ...]] | None
     close_in: Callable[[str, str], None]
@@ -242,6 +243,7 @@ class ApproachMotion(PairChoice):
         for i, h in enumerate(hands):
             self._target_q[h] = q_end[7 * i : 7 * i + 7].copy()
             self._target_qd[h] = np.zeros(len(ARM_JOINTS))
+            self._target_qdd[h] = np.zeros(len(ARM_JOINTS))
         if settle_s > 0:
             advance(settle_s)
 
@@ -250,10 +252,11 @@ class ApproachMotion(PairChoice):
         if self._active is None:
             return
         t0, path, hands = self._active
-        q, qd = path.at(float(self.data.time) + dt - t0)
+        q, qd, qdd = path.state(float(self.data.time) + dt - t0)
         for i, h in enumerate(hands):
             self._target_q[h] = q[7 * i : 7 * i + 7]
             self._target_qd[h] = qd[7 * i : 7 * i + 7]
+            self._target_qdd[h] = qdd[7 * i : 7 * i + 7]
 
     def _record_paths(self, stages: list[_Stage | None]) -> None:
         """The grasp points' planned traces (for pictures), a sample every 0.05 rad."""

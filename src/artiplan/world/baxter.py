@@ -181,6 +181,8 @@ class BaxterHands(ApproachMotion, Hands):
         self._held = {h: None for h in self.names}
         self.last_torque = {h: np.zeros(7) for h in self.names}
         self._target_qd = {h: np.zeros(len(ARM_JOINTS)) for h in self.names}
+        self._target_qdd = {h: np.zeros(len(ARM_JOINTS)) for h in self.names}
+        self._acc_vec, self._acc_out = np.zeros(model.nv), np.zeros(model.nv)
         #: How far [m] each hand jumped at its last grasp (0 after a perfect approach).
         self.last_jump_m = {h: 0.0 for h in self.names}
         #: Per hand, smallest arm clearance [m] at the intermediate configurations of the
@@ -202,6 +204,8 @@ class BaxterHands(ApproachMotion, Hands):
             {h: np.array(self.geoms[h].arm) for h in self.names},
             {h: np.array(self.geoms[h].gripper) for h in self.names},
             dict(self.geoms[self.names[0]].links),
+            {int(model.jnt_qposadr[model.actuator_trnid[aid, 0]]): open_
+             for h in self.names for aid, open_, _ in self._fingers[h]},
         )
         arm_ids = [g for h in self.names for g in self.geoms[h].arm]
         #: Collisions of the arms in the physics (geoms, when, how deep).
@@ -330,6 +334,11 @@ class BaxterHands(ApproachMotion, Hands):
             # Feed-forward (bias forces the gravity compensation leaves, desired velocity)
             # folded into the servo's set-point.
             ff = d.qfrc_bias[va] - d.qfrc_gravcomp[va] + kv * self._target_qd[h]
+            if self._target_qdd[h].any():  # inertia feed-forward along a planned motion
+                self._acc_vec[:] = 0.0
+                self._acc_vec[va] = self._target_qdd[h]
+                mujoco.mj_mulM(self.model, d, self._acc_out, self._acc_vec)
+                ff = ff + self._acc_out[va]
             d.ctrl[act] = self._target_q[h] + ff / kp
             self.last_torque[h] = d.actuator_force[act].copy()
             for aid, open_, closed in self._fingers[h]:

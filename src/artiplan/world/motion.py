@@ -104,6 +104,8 @@ class ArmChecker:
     arm: dict[str, np.ndarray]
     gripper: dict[str, np.ndarray]
     links: dict[str, int]
+    #: qpos address -> angle of each finger joint when open.
+    fingers_open: dict[int, float] = field(default_factory=dict)
     data: mujoco.MjData = field(init=False)
     checks: int = 0
     stats: list[MotionStats] = field(default_factory=list)
@@ -127,8 +129,11 @@ class ArmChecker:
         self._names = list(self.arm)
 
     def sync(self, qpos: Vec) -> None:
-        """Take the world's state (links, both arms) as the scene to check against."""
+        """Take the world's state (links, both arms) as the scene to check against, the
+        fingers open (as they are whenever an arm moves to a grasp)."""
         self.data.qpos[:] = qpos
+        for adr, value in self.fingers_open.items():
+            self.data.qpos[adr] = value
 
     def set_arms(self, q: dict[str, Vec]) -> None:
         for hand, qh in q.items():

@@ -79,13 +79,20 @@ class TimedPath:
     def at(self, t: float) -> tuple[Vec, Vec]:
         """(joint angles [rad], velocities [rad/s]) at ``t`` [s] from the start (held at the
         ends outside [0, duration])."""
-        if not self._segments:
-            return self.waypoints[-1].copy(), np.zeros_like(self.waypoints[-1])
+        q, qd, _ = self.state(t)
+        return q, qd
+
+    def state(self, t: float) -> tuple[Vec, Vec, Vec]:
+        """(angles [rad], velocities [rad/s], accelerations [rad/s^2]) at ``t`` [s]."""
+        if not self._segments or t >= self.duration:
+            zero = np.zeros_like(self.waypoints[-1])
+            return self.waypoints[-1].copy(), zero, zero.copy()
         tau = min(max(t, 0.0), self.duration) / self.stretch
         k = len(self._segments) - 1
         while k > 0 and self._segments[k][0] > tau:
             k -= 1
         t0, traj = self._segments[k]
         local = min(tau - t0, float(traj.duration))  # type: ignore[attr-defined]
-        pos, vel, _acc = traj.at_time(local)  # type: ignore[attr-defined]
-        return np.asarray(pos), np.asarray(vel) / self.stretch
+        pos, vel, acc = traj.at_time(local)  # type: ignore[attr-defined]
+        k2 = self.stretch**2
+        return np.asarray(pos), np.asarray(vel) / self.stretch, np.asarray(acc) / k2
