@@ -80,3 +80,15 @@ def test_angle_wraps_run_to_the_band_edges_and_cover_flips_break() -> None:
     assert len(v) == 4 and math.isnan(v[1]) and v[2:] == [270.0, 272.0]
     # Nothing to do for a smooth series.
     assert wrap_breaks([0.0, 1.0], [10.0, 20.0]) == ([0.0, 1.0], [10.0, 20.0])
+
+
+def test_a_change_of_double_cover_is_found_and_not_drawn() -> None:
+    import math
+
+    from artiplan.viz.execution import cover_flips, wrap_breaks
+
+    thetas, gammas = [88.0, 89.0, 269.5, 270.0], [124.0, 125.0, 235.5, 236.0]
+    assert cover_flips(thetas, gammas) == {2}
+    assert cover_flips([10.0, 20.0, 30.0], [100.0, 110.0, 120.0]) == set()
+    _, v = wrap_breaks([0.0, 1.0, 2.0, 3.0], gammas, {2})
+    assert math.isnan(v[2]) and v[3] == 235.5

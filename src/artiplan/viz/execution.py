@@ -22,18 +22,38 @@ POLE_DEG = 3.0
 TRACE_RGBA = {"left": (1.0, 0.55, 0.0, 1.0), "right": (0.1, 0.45, 1.0, 1.0)}
 
 
-def wrap_breaks(ts: list[float], vs: list[float]) -> tuple[list[float], list[float]]:
+def cover_flips(thetas: list[float], gammas: list[float], tol: float = 20.0) -> set[int]:
+    """Indices k where sample k is the other double-cover representation of a direction near
+    sample k-1's, (t, g) -> (t + 180, 360 - g) within ``tol`` [deg]: not a motion, a change
+    of representation (plots break the line there)."""
+    out = set()
+    for k in range(1, len(thetas)):
+        dt = abs((thetas[k] - thetas[k - 1] + 180.0) % 360.0 - 180.0)
+        if abs(dt - 180.0) < tol and abs((gammas[k] + gammas[k - 1]) % 360.0) < tol:
+            out.add(k)
+        elif abs(dt - 180.0) < tol and abs((gammas[k] + gammas[k - 1]) % 360.0 - 360.0) < tol:
+            out.add(k)
+    return out
+
+
+def wrap_breaks(
+    ts: list[float], vs: list[float], breaks: set[int] | None = None
+) -> tuple[list[float], list[float]]:
     """An angle series [deg, in [0, 360)] ready to plot: where it wraps through 0/360 (a jump
     of more than 270 deg between samples, i.e. less than 90 deg the short way) the line runs
     to the edge of the band at the interpolated crossing time and on from the other edge;
     other jumps of more than 180 deg (a change of the double-cover representation, or a pole)
-    break the line. Returns (times, values) with NaN at the breaks."""
+    break the line, and so do the samples in ``breaks`` (:func:`cover_flips`). Returns
+    (times, values) with NaN at the breaks."""
     out_t: list[float] = []
     out_v: list[float] = []
     for k, (t, v) in enumerate(zip(ts, vs, strict=True)):
         prev = vs[k - 1] if k else math.nan
         jump = abs(v - prev) if k and not math.isnan(prev) and not math.isnan(v) else 0.0
-        if jump > 270.0:
+        if breaks and k in breaks:
+            out_t.append(t)
+            out_v.append(math.nan)
+        elif jump > 270.0:
             up = v < prev  # e.g. 350 -> 10: it went up through 360
             unwrapped = v + 360.0 if up else v - 360.0
             edge = 360.0 if up else 0.0
@@ -100,9 +120,11 @@ def plot_run(log: dict[str, Any], path: str | Path, title: str = "") -> Path:
             lw, alpha = (2.2, 1.0) if goal else (0.9, 0.55)
             for src, ls in (("predicted", "--"), ("perceived", "-")):
                 vs = [s[src][key][i] for s in samples]
+                gs = [s[src]["gamma"][i] for s in samples]
+                flips = cover_flips([s[src]["theta"][i] for s in samples], gs)
                 if key == "theta":
-                    vs = _off_pole(vs, [s[src]["gamma"][i] for s in samples])
-                t, v = wrap_breaks(ts, vs)
+                    vs = _off_pole(vs, gs)
+                t, v = wrap_breaks(ts, vs, flips)
                 name = f"L{i + 1}{' (goal)' if goal else ''} {src}"
                 ax.plot(t, v, ls=ls, color=c, lw=lw, alpha=alpha,
                         label=name if key == "theta" else None)
