@@ -29,9 +29,8 @@ def cover_flips(thetas: list[float], gammas: list[float], tol: float = 20.0) -> 
     out = set()
     for k in range(1, len(thetas)):
         dt = abs((thetas[k] - thetas[k - 1] + 180.0) % 360.0 - 180.0)
-        if abs(dt - 180.0) < tol and abs((gammas[k] + gammas[k - 1]) % 360.0) < tol:
-            out.add(k)
-        elif abs(dt - 180.0) < tol and abs((gammas[k] + gammas[k - 1]) % 360.0 - 360.0) < tol:
+        g = (gammas[k] + gammas[k - 1]) % 360.0  # 360 - g_prev + g_prev: 0 (or 360)
+        if abs(dt - 180.0) < tol and min(g, 360.0 - g) < tol:
             out.add(k)
     return out
 
