@@ -156,3 +156,20 @@ def test_clearance_beyond_the_contact_margin_is_refused() -> None:
     assert chk.valid(q, Query(world.hands.names, clearance=NEAR_CLEARANCE_M))
     with pytest.raises(ValueError, match="contact margin"):
         chk.valid(q, Query(world.hands.names, clearance=MARGIN_M + 0.01))
+
+
+def test_baxter_beyond_six_links_is_a_usage_error(tmp_path) -> None:  # type: ignore[no-untyped-def]
+    import subprocess
+    import sys
+
+    from artiplan.errors import UsageError
+
+    with pytest.raises(UsageError, match="up to 6 links"):
+        make_world(ArticulatedObject(8), hands="baxter")
+    proc = subprocess.run(
+        [sys.executable, "-m", "artiplan", "demo", "--links", "8", "--hands", "baxter",
+         "--no-animation", "-o", str(tmp_path / "out")],
+        capture_output=True, text=True, check=False, timeout=120,
+    )
+    assert proc.returncode == 2, proc.stderr
+    assert "up to 6 links" in proc.stderr + proc.stdout
