@@ -13,8 +13,10 @@ whose simulated arms (checked every 20 ms) come into contact, and the reach time
 from __future__ import annotations
 
 import argparse
+import json
 import random
 import time
+from dataclasses import replace
 
 import numpy as np
 
@@ -70,7 +72,21 @@ def case(n: int, seed: int, avoid: bool, verbose: bool) -> dict[str, float] | No
     }
 
 
-def approach_case(n: int, seed: int, avoid: bool, approach_s: float) -> dict[str, float] | None:
+def physical_link_clearance(world, geoms, hand: str, target: str) -> float:
+    """Like the links clearance, but not counting a gripper inside a link it has just let go
+    of and not yet left (the physics has no contact for that pair: the fingers had closed on
+    the link) - the arm's other parts still count against it."""
+    off = set(getattr(world.hands, "_no_contact", {}).get(hand, set())) - {target}
+    if not off:
+        return clearance(world.model, world.data, geoms, target)[0]
+    rest = replace(geoms, links={k: v for k, v in geoms.links.items() if k not in off})
+    body = replace(geoms, arm=tuple(g for g in geoms.arm if g not in geoms.gripper),
+                   links={k: v for k, v in geoms.links.items() if k in off})
+    return min(clearance(world.model, world.data, rest, target)[0],
+               clearance(world.model, world.data, body, None, True, False, False)[0])
+
+
+def approach_case(n: int, seed: int, avoid: bool, approach_s: float) -> dict[str, object]:
     """Two successive hold-and-rotates (30 deg on z-axis each). Measured here, independently of
     the code's own samples: the simulated arms' smallest clearance every 20 ms of each
     approach (to torso, other arm, scene; and to those or the other links, fingers included),
@@ -92,26 +108,29 @@ def approach_case(n: int, seed: int, avoid: bool, approach_s: float) -> dict[str
 
     hands.grasp = measured_grasp
     approach = hands.approach
-    path: dict[str, list[float]] = {"robot": [], "links": []}
+    path: dict[str, list[float]] = {"robot": [], "links": [], "touch": []}
 
     def measured_approach(pairs, advance) -> None:
         geoms = {h: arm_geoms(world.model, h, list(world.obj.links)) for h, _ in pairs}
-        robot, links = np.inf, np.inf
+        robot, links, touch = np.inf, np.inf, np.inf
 
         def measured_advance(dt: float) -> None:
-            nonlocal robot, links
+            nonlocal robot, links, touch
             advance(dt)
             for h, link in pairs:  # the simulated arm itself, every 20 ms
                 robot = min(robot, clearance(world.model, world.data, geoms[h], link, False)[0])
                 links = min(links, clearance(world.model, world.data, geoms[h], link)[0])
+                touch = min(touch, physical_link_clearance(world, geoms[h], h, link))
 
         approach(pairs, measured_advance)
         path["robot"].append(robot)
         path["links"].append(links)
+        path["touch"].append(touch)
 
     hands.approach = measured_approach
     k = rng.randint(2, n - 2)
     clear, links, reach, drift, miss = [], [], [], [], []
+    refused = ""
     try:
         for hold in (k, k + 1):
             t0 = world.time
@@ -129,38 +148,62 @@ def approach_case(n: int, seed: int, avoid: bool, approach_s: float) -> dict[str
             drift.append(float(direction_error(start, end)[hold - 1]))
             miss.append(float(direction_error(expected, end)[hold]))
             world.stop(release=True)
-    except RuntimeError:
-        return None
-    return {
-        "first": clear[0], "second": clear[1], "links": min(links), "reach": max(reach),
-        "tips": sum(c < 0 for c in at_end), "tips_min": min(at_end),
-        "drift": max(drift), "reached": sum(m < 2.0 for m in miss),
+    except RuntimeError as exc:  # out of reach, or (motion planning) no collision-free way
+        refused = f"{type(exc).__name__}: {exc}"
+    stats = getattr(hands, "checker", None)
+    contacts = getattr(hands, "contacts", None)
+    out: dict[str, object] = {
+        "seed": seed, "refused": refused, "approaches": len(clear),
+        "robot": clear, "links": links, "touch": path["touch"], "reach": reach,
+        "tips": sum(c < 0 for c in at_end), "tips_min": min(at_end, default=np.inf),
+        "drift": drift, "reached": sum(m < 2.0 for m in miss),
+        "plan_wall_s": [m.wall_s for m in stats.stats] if stats is not None else [],
+        "collisions": [e.to_dict() for e in contacts.events] if contacts is not None else [],
     }
+    return out
 
 
 def approach_table(args: argparse.Namespace) -> None:
-    print("| links | cases | unreachable | approaches through contact (1st / 2nd) |"
-          " path clearance min [m] | cases with an approach within a link |"
-          " arms within a link at approach end (of grasps) / min [m] |"
-          " drift > 0.5 deg | reached within 2 deg (of rotations) | reach time max [s] |"
+    """Per link count: the approach measurements (see :func:`approach_case`); every case's
+    row also goes to ``--jsonl`` when given."""
+    print("| links | cases | refused (no collision-free way / out of reach) |"
+          " approaches through torso/arm/scene | path clearance min [m] |"
+          " cases with an approach within another link (not counting the one just let go of) |"
+          " arms within a link at approach end (of grasps) |"
+          " drift > 0.5 deg (of rotations) | reached within 2 deg | reach time median / max [s] |"
+          " physics collisions (events / cases) | planning per motion median / p95 / max [s] |"
           " wall [s] |")
-    print("|---|---|---|---|---|---|---|---|---|---|---|")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|---|")
     for n in args.links:
         t0 = time.perf_counter()
-        res = [approach_case(n, s, not args.no_avoid, args.approach) for s in range(args.seeds)]
-        ok = [r for r in res if r is not None]
-        first = np.array([r["first"] for r in ok])
-        second = np.array([r["second"] for r in ok])
+        rows = [approach_case(n, s, not args.no_avoid, args.approach) for s in range(args.seeds)]
+        if args.jsonl:
+            with open(args.jsonl, "a") as fh:
+                for r in rows:
+                    fh.write(json.dumps({"n_links": n, **r}, default=float) + "\n")
+        robot = [c for r in rows for c in r["robot"]]
+        reach = [x for r in rows for x in r["reach"]]
+        plans = [x for r in rows for x in r["plan_wall_s"]]
+        refused = [r["refused"] for r in rows if r["refused"]]
+        no_way = sum("NotExecutable" in x for x in refused)
+        events = sum(len(r["collisions"]) for r in rows)
+        hit = sum(bool(r["collisions"]) for r in rows)
+        p50, p95 = np.percentile(plans, [50, 95]) if plans else (float("nan"),) * 2
         print(
-            f"| {n} | {len(res)} | {len(res) - len(ok)} |"
-            f" {int((first < 0).sum())} / {int((second < 0).sum())} |"
-            f" {min(first.min(), second.min()):.3f} |"
-            f" {sum(r['links'] < 0 for r in ok)} |"
-            f" {sum(r['tips'] for r in ok)} of {4 * len(ok)} /"
-            f" {min(r['tips_min'] for r in ok):.3f} |"
-            f" {sum(r['drift'] > 0.5 for r in ok)} |"
-            f" {sum(r['reached'] for r in ok)} of {2 * len(ok)} |"
-            f" {max(r['reach'] for r in ok):.2f} | {time.perf_counter() - t0:.0f} |",
+            f"| {n} | {len(rows)} | {no_way} / {len(refused) - no_way} |"
+            f" {sum(c < 0 for c in robot)} of {len(robot)} |"
+            f" {min(robot, default=float('nan')):.3f} |"
+            f" {sum(any(c < 0 for c in r['links']) for r in rows)}"
+            f" ({sum(any(c < 0 for c in r['touch']) for r in rows)}) |"
+            f" {sum(r['tips'] for r in rows)} of {len(robot)} |"
+            f" {sum(d > 0.5 for r in rows for d in r['drift'])} of"
+            f" {sum(len(r['drift']) for r in rows)} |"
+            f" {sum(r['reached'] for r in rows)} |"
+            f" {np.median(reach) if reach else float('nan'):.2f} /"
+            f" {max(reach, default=float('nan')):.2f} |"
+            f" {events} / {hit} | {p50:.2f} / {p95:.2f} /"
+            f" {max(plans, default=float('nan')):.2f} |"
+            f" {time.perf_counter() - t0:.0f} |",
             flush=True,
         )
 
@@ -174,6 +217,7 @@ def main() -> None:
     )
     parser.add_argument("--approach", type=float, default=0.0, help="measure approaches")
     parser.add_argument("-v", "--verbose", action="store_true")
+    parser.add_argument("--jsonl", default="", help="append each approach case as JSON here")
     args = parser.parse_args()
     if args.approach > 0:
         approach_table(args)

@@ -54,3 +54,19 @@ def test_loop_replans_around_a_failed_grasp() -> None:
     second = [a["action"] for a in log.plans[1]["actions"]]
     assert second and not any(f" {hold} {turn} " in a for a in second)
     assert log.success
+
+
+def test_a_start_is_dispatched_with_the_time_to_its_own_stop() -> None:
+    from artiplan.execution.dispatch import planned_duration
+    from artiplan.semantics import TimedAction
+
+    start = TimedAction(1.44, "start-increase", ("L2", "L3", "z-axis"))
+    actions = [
+        start,
+        TimedAction(5.0, "stop-increase", ("L1", "L2", "z-axis")),  # another pair's stop
+        TimedAction(9.44, "stop-increase", ("l2", "l3", "z-axis")),  # its own (any case)
+        TimedAction(12.0, "stop-increase", ("L2", "L3", "z-axis")),
+    ]
+    assert planned_duration(actions, start) == 8.0
+    assert planned_duration(actions[:2], start) is None  # never stopped in the plan
+    assert planned_duration(actions, actions[1]) is None  # not a start

@@ -38,7 +38,8 @@ def test_measured_baxter_reach_time_is_positive_and_in_the_problem() -> None:
     assert measure_reach(make_world, obj, approach_s=0.0) is None
     reach = measure_reach(make_world, obj, approach_s=0.4, repeats=1)
     assert reach is not None
-    # The approach itself takes 0.4 s of simulation; the arms then settle on the grasp.
-    assert 0.4 <= reach < 2.0
+    # The planned motions take at least approach_s (0.4 s; more within Baxter's joint
+    # limits), then the arms settle 0.2 s on the grasp.
+    assert 0.6 <= reach < 6.0
     found = re.search(r"\(= \(reach-time\) ([0-9.]+)\)", _problem(reach, hands_away=True))
     assert found is not None and float(found.group(1)) == reach

@@ -61,3 +61,34 @@ def test_draw_bad_input(tmp_path: Path) -> None:
         ]
     )
     assert rc == 3
+
+
+def test_angle_wraps_run_to_the_band_edges_and_cover_flips_break() -> None:
+    import math
+
+    from artiplan.viz.execution import wrap_breaks
+
+    # 350 -> 10 deg in 1 s: up through 360 at t = 0.5 s, on from 0.
+    t, v = wrap_breaks([0.0, 1.0], [350.0, 10.0])
+    assert t[:4] == [0.0, 0.5, 0.5, 0.5] and v[1] == 360.0 and math.isnan(v[2])
+    assert v[3] == 0.0 and (t[-1], v[-1]) == (1.0, 10.0)
+    # ... and down through 0 the other way round.
+    t, v = wrap_breaks([0.0, 2.0], [5.0, 355.0])
+    assert v[1] == 0.0 and t[1] == 1.0 and v[3] == 360.0
+    # A jump of ~180 deg is a change of representation, not a wrap: the line just breaks.
+    t, v = wrap_breaks([0.0, 1.0, 2.0], [88.0, 270.0, 272.0])
+    assert len(v) == 4 and math.isnan(v[1]) and v[2:] == [270.0, 272.0]
+    # Nothing to do for a smooth series.
+    assert wrap_breaks([0.0, 1.0], [10.0, 20.0]) == ([0.0, 1.0], [10.0, 20.0])
+
+
+def test_a_change_of_double_cover_is_found_and_not_drawn() -> None:
+    import math
+
+    from artiplan.viz.execution import cover_flips, wrap_breaks
+
+    thetas, gammas = [88.0, 89.0, 269.5, 270.0], [124.0, 125.0, 235.5, 236.0]
+    assert cover_flips(thetas, gammas) == {2}
+    assert cover_flips([10.0, 20.0, 30.0], [100.0, 110.0, 120.0]) == set()
+    _, v = wrap_breaks([0.0, 1.0, 2.0, 3.0], gammas, {2})
+    assert math.isnan(v[2]) and v[3] == 235.5

@@ -54,7 +54,8 @@ def test_baxter_retreats_after_release_in_simulated_time() -> None:
     world.stop(release=True)
     t0 = world.time
     hands.retreat(["left", "right"], world.step, distance=0.1, duration_s=0.5)
-    assert world.time == pytest.approx(t0 + 0.7, abs=0.01)  # 0.5 s motion + 0.2 s settling
+    # At least 0.5 s of motion (more if Baxter's joint limits need it) + 0.2 s settling.
+    assert t0 + 0.7 - 0.01 <= world.time < t0 + 2.0
     for h in ("left", "right"):
         assert hands.held(h) is None
         moved = float(((world.data.xpos[hands._hand[h]] - grasp_points[h]) ** 2).sum() ** 0.5)

@@ -38,8 +38,9 @@ def add_arguments(parser: argparse.ArgumentParser) -> None:
                              "plan")
     parser.add_argument("--model", choices=("ng", "ucm", "uacm"), default="ucm")
     parser.add_argument("--links", type=int, default=DEMO_LINKS, help="links (default 4)")
-    parser.add_argument("--hands", choices=("baxter", "virtual"), default="baxter",
-                        help="baxter (default; falls back to virtual hands if unavailable)")
+    parser.add_argument("--hands", choices=("baxter", "virtual"), default=None,
+                        help="baxter (default up to 6 links; longer objects: virtual hands, "
+                             "with a warning; falls back to virtual hands if unavailable)")
     parser.add_argument("--preset", choices=("stiff", "loose"), default="stiff")
     parser.add_argument("--seed", type=int, default=DEMO_SEED, help="configuration seed")
     parser.add_argument("--goal", choices=("window", "threshold"), default="window",
@@ -74,13 +75,14 @@ def run(args: argparse.Namespace) -> int:
     from artiplan.model import ArticulatedObject
 
     obj = ArticulatedObject(args.links)
+    limit_note = _choose_hands(args)
     init, target = random_pair(obj.n_links, random.Random(args.seed))
     written = _write_encodings(out / "encodings", obj, init, target, args.seed)
     world, hands_note = _make_world(obj, init, args)
     config, calib_note = _loop_config(obj, world, args)
     print(f"artiplan demo: {obj.n_links}-link object, seed {args.seed}, model "
           f"{args.model.upper()}, preset {args.preset}, hands {world.hands.kind}")
-    for note in (hands_note, calib_note):
+    for note in (limit_note, hands_note, calib_note):
         if note:
             print(note)
     written += _execute(out, world, target, config, args, hands_note)
@@ -110,6 +112,25 @@ def _write_encodings(folder: Path, obj: Any, init: Any, target: Any, seed: int) 
                                       title="demo: initial (solid) and target (ghost)"))
     written.append(draw_configuration(obj, target, folder / "target.png", title="demo: target"))
     return written
+
+
+def _choose_hands(args: argparse.Namespace) -> str:
+    """Baxter up to the lengths it serves: asked for beyond them, a usage error (exit 2);
+    by default there, virtual hands and a warning (returned)."""
+    from artiplan.world.baxter_model import BAXTER_MAX_LINKS
+
+    if args.links <= BAXTER_MAX_LINKS:
+        args.hands = args.hands or "baxter"
+        return ""
+    if args.hands == "baxter":
+        raise UsageError(f"--hands baxter serves objects of up to {BAXTER_MAX_LINKS} links (a "
+                         f"longer chain hangs below its reach); --links {args.links}: use "
+                         "--hands virtual")
+    if args.hands is None:
+        args.hands = "virtual"
+        return (f"!!! WARNING: Baxter serves objects of up to {BAXTER_MAX_LINKS} links; "
+                f"running the {args.links}-link object with VIRTUAL hands. !!!")
+    return ""
 
 
 def _make_world(obj: Any, init: Any, args: argparse.Namespace) -> tuple[Any, str]:

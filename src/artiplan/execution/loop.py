@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING, Any, cast
 from artiplan.encoding import domain_pddl, make_goal
 from artiplan.encoding.options import Model
 from artiplan.execution.config import Intervention, LoopConfig
-from artiplan.execution.dispatch import ActionFailed, dispatch, link_named
+from artiplan.execution.dispatch import ActionFailed, dispatch, link_named, planned_duration
 from artiplan.execution.monitor import Monitor, goal_errors
 from artiplan.execution.predict import Prediction
 from artiplan.execution.problem import build_problem, canonical
@@ -36,6 +36,8 @@ if TYPE_CHECKING:
     from artiplan.world import World
 
 Progress = Callable[[str], None]
+#: Wall time [s] after which a long execution prints a line even when nothing happened.
+HEARTBEAT_S = 10.0
 #: Called with (world, kind, label) after every percept (kind ``monitor``), action (``action``,
 #: its signature), intervention and the final check; e.g. to record camera frames.
 Observer = Callable[["World", str, str], None]
@@ -49,7 +51,9 @@ class ClosedLoop:
                  progress: Progress | None = None, seed: int = 0,
                  observer: Observer | None = None) -> None:
         self.world, self.obj, self.target, self.config = world, world.obj, target, config
-        self.progress = progress or (lambda _line: None)
+        self._say = progress or (lambda _line: None)
+        self._said = time.perf_counter()
+        self._collisions_seen = 0
         self.observer = observer or (lambda _w, _k, _l: None)
         enc = config.encoding
         #: The OWL knowledge base (percepts in, initial state and target out), if used.
@@ -91,6 +95,8 @@ class ClosedLoop:
     def run(self) -> RunLog:
         """Plan, execute, monitor and re-plan until success, failure or the re-plan budget."""
         wall0 = time.perf_counter()
+        t_start = self.world.time
+        motions0 = len(getattr(getattr(self.world.hands, "checker", None), "stats", []))
         self.world.run_until(self.world.time + self.config.settle_s)
         reason = "initial"
         while True:
@@ -113,8 +119,44 @@ class ClosedLoop:
         if not self.log.final:
             self._final_check()
         self.world.stop(release=True)
+        self._record_arms(t_start, motions0)
         self.log.wall_s = round(time.perf_counter() - wall0, 4)
         return self.log
+
+    def _record_arms(self, t_start: float, motions0: int) -> None:
+        """Copy the arms' collisions and planned motions of this run into the log."""
+        hands = self.world.hands
+        contacts = getattr(hands, "contacts", None)
+        if contacts is not None:
+            self.log.collisions = [e.to_dict() for e in contacts.since(t_start)]
+        checker = getattr(hands, "checker", None)
+        if checker is not None:
+            self.log.motions = [m.to_dict() for m in checker.stats[motions0:]]
+        if self.log.collisions:
+            deepest = max(self.log.collisions, key=lambda c: c["depth_m"])
+            self.progress(f"arm collisions in the physics: {len(self.log.collisions)} (deepest "
+                          f"{1000 * deepest['depth_m']:.1f} mm, {'~'.join(deepest['geoms'])} "
+                          f"at t={deepest['deepest']:.2f} s)")
+        elif contacts is not None:
+            self.progress("arm collisions in the physics: none")
+
+    def progress(self, line: str) -> None:
+        """Print a progress line (and remember when, for :meth:`_heartbeat`)."""
+        self._said = time.perf_counter()
+        self._say(line)
+
+    def _heartbeat(self, index: int, done: int, total: int) -> None:
+        """A line when nothing was printed for HEARTBEAT_S of wall time (long executions),
+        and one per arm collision that started since the last look."""
+        contacts = getattr(self.world.hands, "contacts", None)
+        if contacts is not None:
+            for e in contacts.events[self._collisions_seen:]:
+                self.progress(f"t={e.start:7.2f} s  arm collision: {'~'.join(e.geoms)} "
+                              f"({1000 * e.depth_m:.1f} mm deep so far)")
+            self._collisions_seen = len(contacts.events)
+        if time.perf_counter() - self._said > HEARTBEAT_S:
+            self.progress(f"t={self.world.time:7.2f} s  executing plan {index}: {done} of "
+                          f"{total} actions dispatched, still monitoring")
 
     def _fall_back(self) -> None:
         """Switch to the fallback model (see ``LoopConfig.fallback_model``)."""
@@ -229,6 +271,7 @@ class ClosedLoop:
                 return None
             if t_next >= next_mon - tol:
                 next_mon = now + self.config.monitor_dt
+                self._heartbeat(index, i, len(actions))
             if now > self.config.max_time:
                 return None
 
@@ -257,9 +300,10 @@ class ClosedLoop:
         enc = self.encoding
         now = self.world.time
         planned = pred.t0 + action.time
+        duration = planned_duration(list(self.current_plan.actions), action)
         try:
             did, ok = dispatch(self.world, action, (enc.speed_i, enc.speed_d),
-                               pred.at(max(now, planned))), True
+                               pred.at(max(now, planned)), duration), True
         except ActionFailed as exc:
             did, ok = str(exc), False
             if action.name.lower().startswith("start-") and len(action.args) == 3:

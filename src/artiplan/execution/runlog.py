@@ -87,6 +87,15 @@ RUN_LOG_SCHEMA: dict[str, Any] = {
                                  "success": {"type": "boolean"}}},
         "success": {"type": "boolean"},
         "wall_s": {"type": "number", "minimum": 0},
+        "collisions": {"type": "array", "items": {
+            "type": "object", "required": ["geoms", "start", "end", "depth_m"],
+            "properties": {"geoms": {"type": "array", "items": {"type": "string"}},
+                           "start": _NUM, "end": _NUM,
+                           "depth_m": {"type": "number", "minimum": 0}, "deepest": _NUM}}},
+        "motions": {"type": "array", "items": {
+            "type": "object", "required": ["wall_s", "dims", "ok"],
+            "properties": {"wall_s": {"type": "number", "minimum": 0},
+                           "dims": {"type": "integer"}, "ok": {"type": "boolean"}}}},
     },
 }
 
@@ -119,6 +128,10 @@ class RunLog:
     final: dict[str, Any] = field(default_factory=dict)
     success: bool = False
     wall_s: float = 0.0
+    #: Arm collisions in the physics (Baxter): geoms, start/end/deepest time [s], depth [m].
+    collisions: list[dict[str, Any]] = field(default_factory=list)
+    #: Planned arm motions (Baxter): wall time [s], dimension (7/14), waypoints, success.
+    motions: list[dict[str, Any]] = field(default_factory=list)
 
     def to_dict(self) -> dict[str, Any]:
         return {"schema": SCHEMA_RUN_LOG, **self.__dict__}

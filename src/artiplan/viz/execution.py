@@ -16,14 +16,50 @@ if TYPE_CHECKING:
     from artiplan.world import World
 
 _HAPPENING, _REPLAN, _PUSH = "0.6", "tab:red", "tab:orange"
+#: Theta is not drawn where gamma is this near [deg] a pole (0, 180, 360): it is not observable.
+POLE_DEG = 3.0
+#: Colours of the planned grasp-point traces in the snapshots, per hand (RGBA).
+TRACE_RGBA = {"left": (1.0, 0.55, 0.0, 1.0), "right": (0.1, 0.45, 1.0, 1.0)}
 
 
-def _unwrap_breaks(ts: list[float], vs: list[float]) -> tuple[list[float], list[float]]:
-    """Insert NaN where an angle wraps (a jump > 180 deg), so the line is not drawn across."""
+def cover_flips(thetas: list[float], gammas: list[float], tol: float = 20.0) -> set[int]:
+    """Indices k where sample k is the other double-cover representation of a direction near
+    sample k-1's, (t, g) -> (t + 180, 360 - g) within ``tol`` [deg]: not a motion, a change
+    of representation (plots break the line there)."""
+    out = set()
+    for k in range(1, len(thetas)):
+        dt = abs((thetas[k] - thetas[k - 1] + 180.0) % 360.0 - 180.0)
+        g = (gammas[k] + gammas[k - 1]) % 360.0  # 360 - g_prev + g_prev: 0 (or 360)
+        if abs(dt - 180.0) < tol and min(g, 360.0 - g) < tol:
+            out.add(k)
+    return out
+
+
+def wrap_breaks(
+    ts: list[float], vs: list[float], breaks: set[int] | None = None
+) -> tuple[list[float], list[float]]:
+    """An angle series [deg, in [0, 360)] ready to plot: where it wraps through 0/360 (a jump
+    of more than 270 deg between samples, i.e. less than 90 deg the short way) the line runs
+    to the edge of the band at the interpolated crossing time and on from the other edge;
+    other jumps of more than 180 deg (a change of the double-cover representation, or a pole)
+    break the line, and so do the samples in ``breaks`` (:func:`cover_flips`). Returns
+    (times, values) with NaN at the breaks."""
     out_t: list[float] = []
     out_v: list[float] = []
     for k, (t, v) in enumerate(zip(ts, vs, strict=True)):
-        if k and abs(v - vs[k - 1]) > 180.0:
+        prev = vs[k - 1] if k else math.nan
+        jump = abs(v - prev) if k and not math.isnan(prev) and not math.isnan(v) else 0.0
+        if breaks and k in breaks:
+            out_t.append(t)
+            out_v.append(math.nan)
+        elif jump > 270.0:
+            up = v < prev  # e.g. 350 -> 10: it went up through 360
+            unwrapped = v + 360.0 if up else v - 360.0
+            edge = 360.0 if up else 0.0
+            tc = ts[k - 1] + (edge - prev) / (unwrapped - prev) * (t - ts[k - 1])
+            out_t += [tc, tc, tc]
+            out_v += [edge, math.nan, 360.0 - edge]
+        elif jump > 180.0:
             out_t.append(t)
             out_v.append(math.nan)
         out_t.append(t)
@@ -40,10 +76,31 @@ def _mark_events(ax: Any, log: dict[str, Any]) -> None:
         ax.axvline(i["time"], color=_PUSH, lw=1.2, ls="--")
 
 
+def _event_handles(log: dict[str, Any]) -> list[Any]:
+    """Legend entries of the vertical lines that are in the plot."""
+    from matplotlib.lines import Line2D
+
+    out = [Line2D([], [], color=_HAPPENING, lw=0.8, ls=":", label="happening")]
+    if log["replans"]:
+        out.append(Line2D([], [], color=_REPLAN, lw=1.2, label="re-plan"))
+    if log["interventions"]:
+        out.append(Line2D([], [], color=_PUSH, lw=1.2, ls="--", label="human push"))
+    return out
+
+
+def _off_pole(vs: list[float], gammas: list[float]) -> list[float]:
+    """``vs`` (theta) with NaN where gamma is within POLE_DEG of a pole."""
+    return [math.nan if min(abs(g % 180.0), 180.0 - abs(g % 180.0)) < POLE_DEG else v
+            for v, g in zip(vs, gammas, strict=True)]
+
+
 def plot_run(log: dict[str, Any], path: str | Path, title: str = "") -> Path:
     """Predicted (dashed) vs perceived (solid) theta and gamma of every moving link, and the
-    per-link direction error with the monitor's thresholds; happenings dotted grey, re-plans
-    red, human interventions orange dashed. Returns the PNG path."""
+    per-link direction error with the monitor's thresholds. Goal links are drawn thick with
+    their target angles (dotted), the other links thin; theta is left out near the poles
+    (where it is not observable); a wrap through 0/360 leaves at one edge and comes back
+    at the other (:func:`wrap_breaks`). Happenings dotted grey, re-plans red, human
+    interventions orange dashed (in the legend). Returns the PNG path."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -51,24 +108,39 @@ def plot_run(log: dict[str, Any], path: str | Path, title: str = "") -> Path:
 
     samples = log["samples"]
     n = len(log["initial"]["theta"])
+    goals = set(log.get("goal_links", []))
     ts = [s["time"] for s in samples]
-    fig, axes = plt.subplots(3, 1, figsize=(10, 9), sharex=True)
+    fig, axes = plt.subplots(3, 1, figsize=(10, 9.5), sharex=True)
     colours = plt.get_cmap("tab10")
     for ax, key, label in ((axes[0], "theta", "theta (xy-axes) [deg]"),
                            (axes[1], "gamma", "gamma (z-axis) [deg]")):
         for i in range(1, n):
-            c = colours(i % 10)
+            c, goal = colours(i % 10), f"L{i + 1}" in goals
+            lw, alpha = (2.2, 1.0) if goal else (0.9, 0.55)
             for src, ls in (("predicted", "--"), ("perceived", "-")):
-                t, v = _unwrap_breaks(ts, [s[src][key][i] for s in samples])
-                ax.plot(t, v, ls=ls, color=c, lw=1.2,
-                        label=f"L{i + 1} {src}" if key == "theta" else None)
+                vs = [s[src][key][i] for s in samples]
+                gs = [s[src]["gamma"][i] for s in samples]
+                flips = cover_flips([s[src]["theta"][i] for s in samples], gs)
+                if key == "theta":
+                    vs = _off_pole(vs, gs)
+                t, v = wrap_breaks(ts, vs, flips)
+                name = f"L{i + 1}{' (goal)' if goal else ''} {src}"
+                ax.plot(t, v, ls=ls, color=c, lw=lw, alpha=alpha,
+                        label=name if key == "theta" else None)
+            if goal and ts:
+                ax.axhline(log["target"][key][i], color=c, lw=1.0, ls=":",
+                           label=f"L{i + 1} target" if key == "theta" else None)
         ax.set_ylabel(label)
         ax.set_ylim(-5, 365)
         _mark_events(ax, log)
     axes[0].legend(ncol=4, fontsize=7, loc="upper right")
+    axes[0].set_title(f"theta not drawn within {POLE_DEG:g} deg of a pole (unobservable)",
+                      fontsize=8, loc="left")
     for i in range(1, n):
+        goal = f"L{i + 1}" in goals
         errs = [s["errors"][i] for s in samples]
-        axes[2].plot(ts, errs, color=colours(i % 10), label=f"L{i + 1}")
+        axes[2].plot(ts, errs, color=colours(i % 10), lw=2.0 if goal else 0.9,
+                     alpha=1.0 if goal else 0.55, label=f"L{i + 1}{' (goal)' if goal else ''}")
     settings = log["settings"]
     axes[2].axhline(settings["threshold_deg"], color=_REPLAN, lw=0.8, ls="--",
                     label="threshold (goal links)")
@@ -76,9 +148,13 @@ def plot_run(log: dict[str, Any], path: str | Path, title: str = "") -> Path:
     axes[2].set_ylabel("direction error [deg]")
     axes[2].set_xlabel("simulated time [s]")
     axes[2].set_yscale("symlog", linthresh=10.0)
-    axes[2].legend(ncol=5, fontsize=7, loc="upper right")
+    handles, _ = axes[2].get_legend_handles_labels()
+    axes[2].legend(handles=handles + _event_handles(log), ncol=5, fontsize=7, loc="upper right")
     verdict = "goal reached" if log["success"] else "goal NOT reached"
-    fig.suptitle(title or f"closed loop: {verdict}, {len(log['replans'])} re-plan(s)")
+    collisions = log.get("collisions")
+    extra = f", {len(collisions)} arm collision(s)" if collisions is not None and \
+        log["settings"].get("hands") == "baxter" else ""
+    fig.suptitle(title or f"closed loop: {verdict}, {len(log['replans'])} re-plan(s){extra}")
     fig.tight_layout()
     out = Path(path)
     fig.savefig(out, dpi=110)
@@ -99,6 +175,9 @@ class FrameRecorder:
 
         self.renderer = mujoco.Renderer(world.model, height=height, width=width)
         self.every, self._count = every, 0
+        #: Planned grasp-point traces already drawn (``hands.last_paths`` of Baxter).
+        self._paths_seen = 0
+        self._traces: list[dict[str, list[np.ndarray]]] = []
         self.frames: list[np.ndarray] = []
         self.snapshots: list[tuple[float, str, np.ndarray]] = []
         # Free cameras framed on the object (the scene's fixed cameras frame the whole robot,
@@ -116,8 +195,11 @@ class FrameRecorder:
             cam.distance, cam.azimuth, cam.elevation = dist * reach, azimuth, elevation
             self.cameras[name] = cam
 
-    def _image(self, world: World, camera: str) -> np.ndarray:
+    def _image(self, world: World, camera: str, traces: bool = False) -> np.ndarray:
         self.renderer.update_scene(world.data, camera=self.cameras[camera])
+        if traces:
+            for paths in self._traces:
+                _draw_traces(self.renderer.scene, paths)
         return np.asarray(self.renderer.render()).copy()
 
     def observe(self, world: World, kind: str, label: str) -> None:
@@ -128,10 +210,14 @@ class FrameRecorder:
                 self.frames.append(_caption(self._image(world, "overhead"),
                                             f"t = {world.time:5.1f} s"))
             return
-        pair = np.concatenate([self._image(world, "overhead"),
-                               self._image(world, "perspective")], axis=1)
+        paths = getattr(world.hands, "last_paths", [])
+        self._traces = list(paths[self._paths_seen:])  # the motions of this action
+        self._paths_seen = len(paths)
+        pair = np.concatenate([self._image(world, "overhead", True),
+                               self._image(world, "perspective", True)], axis=1)
+        note = "  (lines: planned hand paths)" if self._traces else ""
         self.snapshots.append((world.time, label, _caption(pair, f"t = {world.time:.2f} s  "
-                                                                 f"{label}")))
+                                                                 f"{label}{note}")))
         if kind == "intervention":  # make the push visible in the animation too
             self.frames.append(_caption(self._image(world, "overhead"),
                                         f"t = {world.time:5.1f} s  human push"))
@@ -160,6 +246,27 @@ class FrameRecorder:
 
     def close(self) -> None:
         self.renderer.close()
+
+
+def _draw_traces(scene: Any, paths: dict[str, list[np.ndarray]]) -> None:
+    """Add each hand's planned grasp-point trace to ``scene`` as a chain of thin capsules
+    (and a sphere where it ends: the grasp)."""
+    import mujoco
+
+    for hand, pts in paths.items():
+        rgba = np.array(TRACE_RGBA.get(hand, (1.0, 1.0, 1.0, 1.0)), dtype=np.float32)
+        for a, b in zip(pts, pts[1:], strict=False):
+            if scene.ngeom >= scene.maxgeom or np.linalg.norm(b - a) < 1e-6:
+                continue
+            g = scene.geoms[scene.ngeom]
+            mujoco.mjv_initGeom(g, mujoco.mjtGeom.mjGEOM_CAPSULE, np.zeros(3), np.zeros(3),
+                                np.eye(3).ravel(), rgba)
+            mujoco.mjv_connector(g, mujoco.mjtGeom.mjGEOM_CAPSULE, 0.004, a, b)
+            scene.ngeom += 1
+        if pts and scene.ngeom < scene.maxgeom:
+            mujoco.mjv_initGeom(scene.geoms[scene.ngeom], mujoco.mjtGeom.mjGEOM_SPHERE,
+                                np.full(3, 0.012), pts[-1], np.eye(3).ravel(), rgba)
+            scene.ngeom += 1
 
 
 def _caption(img: np.ndarray, text: str) -> np.ndarray:

@@ -5,6 +5,7 @@ Set ``MUJOCO_GL=egl`` (or ``osmesa``) before importing this package if you rende
 
 from __future__ import annotations
 
+from artiplan.errors import UsageError
 from artiplan.model import ArticulatedObject, Configuration
 from artiplan.world.hands import Hands, VirtualHands
 from artiplan.world.perception import Percept, PerceptionConfig
@@ -39,8 +40,11 @@ def make_world(
     avoid_collisions: bool = True,
 ) -> World:
     """A world with named settings: ``preset`` stiff|loose, ``hands`` virtual|baxter
-    (``approach_s`` > 0: Baxter's arms move to each grasp in that many simulated seconds;
-    ``avoid_collisions``: Baxter's grasps chosen and solved clear of the torso, arms, table)."""
+    (``approach_s`` > 0: Baxter's arms move to each grasp in simulated time, along planned
+    motions taking at least that many seconds; ``avoid_collisions``: Baxter's grasps and
+    motions collision-free). Baxter serves objects of up to
+    :data:`artiplan.world.baxter_model.BAXTER_MAX_LINKS` links: a longer one raises
+    :class:`artiplan.errors.UsageError`."""
     from artiplan.world.presets import preset as get_preset
 
     config = WorldConfig(
@@ -49,7 +53,12 @@ def make_world(
     if hands == "virtual":
         return World(obj, conf, config, VirtualHands())
     if hands == "baxter":
-        from artiplan.world.baxter import BaxterHands, baxter_layout
+        from artiplan.world.baxter import BAXTER_MAX_LINKS, BaxterHands, baxter_layout
+
+        if obj.n_links > BAXTER_MAX_LINKS:
+            raise UsageError(
+                f"Baxter serves objects of up to {BAXTER_MAX_LINKS} links (a longer chain "
+                f"hangs below its reach); this one has {obj.n_links}: use virtual hands")
 
         return World(
             obj,

@@ -1,10 +1,24 @@
 """Approach motions of Baxter's arms (mixin of :class:`artiplan.world.baxter.BaxterHands`).
 
-An approach backs opened hands that are still near the object off the links, moves each arm in
-joint space to a pre-grasp pose a few centimetres back along the hand's approach axis from its
-grasp (a detour through a further-backed waypoint exists but is off: :data:`DETOURS_M`), then
-straight in along that axis through IK waypoints. The
-path is checked at a few sampled configurations only; arm contacts are off in the physics.
+An approach has three motions, each planned and checked before the arms move:
+
+1. every opened hand still near the object backs off :data:`APPROACH_RETREAT_M` along its
+   approach axis (its gripper may touch the link it just let go of);
+2. the transfer: the moving arms go in joint space (14-D when both move, the arms checked
+   against each other at every state) to their pre-grasp poses, :data:`PREGRASP_M` back along
+   each hand's approach axis from its grasp, planned with OMPL's RRT-Connect against the
+   torso, the other arm, the table, pedestal, fixture and every link
+   (:func:`artiplan.world.motion.plan_path`), keeping
+   :data:`~artiplan.world.motion.TRANSFER_CLEARANCE_M`;
+3. the final straight legs in along the approach axes (IK waypoints, checked when the pair was
+   chosen, every link but the one each gripper closes on).
+
+Each motion is timed rest-to-rest per segment within Baxter's joint limits
+(:class:`artiplan.world.timing.TimedPath`) and followed by the joint servos, whose set-points
+are sampled from it at every physics step. ``approach_s`` is a lower bound on the three
+motions' total (the transfer is slowed down uniformly when they are faster); the arms then
+settle :data:`APPROACH_SETTLE_S`. Planning statistics (wall time per motion) are in
+``checker.stats``.
 """
 
 from __future__ import annotations
@@ -14,137 +28,195 @@ from collections.abc import Callable
 import mujoco
 import numpy as np
 
-from artiplan.world.collision import clearance
-from artiplan.world.grasping import REACH_TOLERANCE, Candidate, GraspChoice
+from artiplan.world.grasping import Candidate
+from artiplan.world.motion import NEAR_CLEARANCE_M, Query, plan_path, ramped
+from artiplan.world.pairs import (  # noqa: F401 - re-exported (public names)
+    APPROACH_RETREAT_M,
+    PREGRASP_M,
+    PREGRASP_STEPS,
+    RETREAT_NEAR,
+    NotExecutableError,
+    PairChoice,
+    along,
+)
 from artiplan.world.rotations import Vec, quat_to_mat
+from artiplan.world.timing import Limits, TimedPath
 
 ARM_JOINTS = ("s0", "s1", "e0", "e1", "w0", "w1", "w2")
-#: Interval [s] between joint-target updates of an approach motion.
+#: Interval [s] at which an approach hands control back to the world's ``advance``.
 APPROACH_DT = 0.02
 #: Time [s] the arms get to settle on their grasps after an approach.
 APPROACH_SETTLE_S = 0.2
-#: Default retreat after a release: this far [m] back along the hand's approach axis, in
-#: this many simulated seconds.
+#: Default retreat after a release: this far [m] back along the hand's approach axis, in at
+#: least this many simulated seconds.
 RETREAT_M = 0.1
 RETREAT_S = 0.5
-#: An approach first backs every opened hand whose grasp point is nearer than RETREAT_NEAR
-#: [m] to a link APPROACH_RETREAT_M [m] along its approach axis, in APPROACH_RETREAT_S [s].
-RETREAT_NEAR = 0.06
-APPROACH_RETREAT_M = 0.06
-APPROACH_RETREAT_S = 0.24
-#: Joint configurations checked for clearance along an approach (evenly spaced, ends excluded).
-PATH_CHECKS = 8
-#: ... and on the last leg also this far (smoothstep parameter) along it.
-END_CHECK = 0.94
-#: Pre-grasp pose: this far [m] back along the approach axis from the grasp, reached in this
-#: share of ``approach_s``; the rest goes straight in through PREGRASP_STEPS IK waypoints.
-PREGRASP_M = 0.07
+#: Lower bound [s] of the back-off at the start of an approach (kept for the old name).
+APPROACH_RETREAT_S = 0.0
+#: Share of ``approach_s`` the transfer takes at least (kept for the old name).
 PREGRASP_SHARE = 0.75
-PREGRASP_STEPS = 3
-#: A first leg through an obstacle may go through the pre-grasp pose backed this far [m] more
-#: (or the start backed the first distance). Off: measured (world.md), detours of (0.12, 0.24)
-#: took 7 -> 6 of 24 approaches out of contact on 4 links but 7 -> 9 into it on 6 links (the
-#: simulated arm lags the sampled path).
-DETOURS_M: tuple[float, ...] = ()
 
 
-def _along(path: list[Vec], s: float) -> tuple[Vec, Vec]:
-    """Point and slope d/ds of the piecewise-linear ``path`` (equal shares) at ``s`` in [0, 1]."""
-    m = len(path) - 1
-    if m == 0:
-        return path[0].copy(), np.zeros_like(path[0])
-    k = min(int(s * m), m - 1)
-    step = path[k + 1] - path[k]
-    return path[k] + (s * m - k) * step, m * step
+class ApproachMotion(PairChoice):
+    """Mixin: planned, timed approach motions to the grasps."""
 
-class ApproachMotion(GraspChoice):
-    """Mixin: approach paths to the grasps and joint-space moves along waypoints."""
-
-    approach_s: float
-    _held: dict[str, str | None]
+    limits: Limits
     _planned: dict[str, tuple[str, int]]
-    _target_q: dict[str, Vec]
     _target_qd: dict[str, Vec]
+    _target_qdd: dict[str, Vec]
+    _no_contact: dict[str, set[str]]
+    _active: tuple[float, TimedPath, tuple[str, ...]] | None
+    close_in: Callable[[str, str], None]
     last_approach_clearance: dict[str, tuple[float, float]]
     last_pregrasp: dict[str, Vec]
+    #: Per approach: hand -> world positions [m] of its grasp point along the planned motion.
+    last_paths: list[dict[str, list[Vec]]]
 
     def approach(self, pairs: list[tuple[str, str]], advance: Callable[[float], None]) -> None:
-        """Move each (hand, link) arm to its grasp in simulated time, advancing the world with
-        ``advance(dt)``: first every opened hand still near the object backs off
-        :data:`APPROACH_RETREAT_M` along its approach axis (:data:`APPROACH_RETREAT_S`), then
-        the arms move in joint space to their pre-grasp poses (:data:`PREGRASP_M` back along
-        the approach axis from the grasps :meth:`assign` chose; through a further-backed
-        waypoint if :data:`DETOURS_M` is set and that is clearer) in :data:`PREGRASP_SHARE`
-        of ``approach_s`` seconds, then straight in (IK waypoints) in the rest, then settle;
-        the final grasp corrects what the falling links moved meanwhile. Nothing happens when
-        ``approach_s`` is 0 (the arms jump at grasp)."""
+        """Move each (hand, link) arm to the grasp :meth:`assign` chose, in simulated time
+        (the world advancing by ``advance(dt)``): back-off, planned transfer, straight leg,
+        settling (module docstring). Raises :class:`NotExecutableError` when no
+        collision-free transfer is found. Nothing happens when ``approach_s`` is 0 (the arms
+        jump at grasp)."""
         if self.approach_s <= 0:
             return
-        links = dict(pairs)
-        finals: dict[str, list[Vec]] = {}
+        cands = {h: self._chosen(h, link) for h, link in pairs}
+        legs = {h: self._leg(c) for h, c in cands.items()}
         for h, link in pairs:
-            c = self._chosen(h, link)
-            finals[h] = self._final_leg(h, c)
-            self._planned[h] = (link, c.index)  # the grasp then keeps this candidate
-        starts = {h: self.data.qpos[self._q[h]].copy() for h in self.names}
-        near = [h for h in self.names if self._held[h] is None and self._near_object(h)]
-        if near:
-            away = {h: self._backed_off(h, APPROACH_RETREAT_M) for h in near}
-            self._move({h: [starts[h], away[h]] for h in near}, APPROACH_RETREAT_S, advance, 0.0)
-            starts.update(away)
-        firsts = {h: [starts[h], finals[h][0]] for h in finals}
-        for h, link in pairs:  # a detour when the direct leg passes through an obstacle
-            firsts[h] = self._clearer_leg(h, link, firsts, finals[h])
-        self.last_pregrasp = {h: finals[h][0] for h in finals}
-        self.last_approach_clearance = {
-            h: self._path_clearance(h, links[h], [firsts, finals]) for h in finals
-        }
-        t_first = PREGRASP_SHARE * self.approach_s
-        self._move(firsts, t_first, advance, 0.0)
-        self._move(finals, self.approach_s - t_first, advance)
+            self._planned[h] = (link, cands[h].index)  # the grasp then keeps this candidate
+        moving = tuple(h for h in self.names if h in legs)
+        backoff = self._plan_backoff()
+        starts = {h: self._actual(h) for h in self.names}
+        if backoff is not None:
+            starts.update(backoff.split_end())
+        goals = {h: legs[h][0] for h in moving}
+        goals.update(self.idle_goals(moving, starts))  # an idle arm goes home, out of the way
+        travelling = tuple(h for h in self.names if h in goals)
+        transfer = self._plan_transfer(travelling, starts, goals, legs, cands)
+        steps = max(len(leg) for leg in legs.values()) - 1
+        final = TimedPath([np.concatenate([along(legs[h], k / steps) for h in moving])
+                           for k in range(steps + 1)], self.limits)
+        spent = final.duration + (backoff.path.duration if backoff else 0.0)
+        transfer = TimedPath(transfer.waypoints, self.limits, self.approach_s - spent)
+        self.last_pregrasp = {h: legs[h][0] for h in moving}
+        self._record_paths([backoff, _Stage(travelling, transfer), _Stage(moving, final)])
+        if backoff is not None:
+            self._run(backoff.hands, backoff.path, advance, 0.0)
+        self._run(travelling, transfer, advance, 0.0)
+        final = self._retarget(moving, cands, final)
+        for h in moving:
+            self.close_in(h, cands[h].link)
+        self._run(moving, final, advance, APPROACH_SETTLE_S)
 
-    def _final_leg(self, hand: str, c: Candidate) -> list[Vec]:
-        """Joint angles [rad] from the pre-grasp pose to the grasp ``c``: IK waypoints on the
-        straight line along the hand's approach axis (solved backwards from ``c.q`` so they
-        stay on its branch); just ``[c.q]`` if the pre-grasp pose is out of reach."""
-        axis = quat_to_mat(c.quat)[:, 2]
-        path, q = [c.q], c.q
-        for i in range(1, PREGRASP_STEPS + 1):
-            pos = c.pos - (i / PREGRASP_STEPS) * PREGRASP_M * axis
-            q = self.solve_ik(hand, pos, c.quat, iterations=100, start=q)
-            if self.ik_miss(hand, pos, c.quat) > REACH_TOLERANCE:
-                return [c.q, c.q]
-            path.insert(0, q)
-        return path
+    def retreat(
+        self,
+        hands: list[str],
+        advance: Callable[[float], None],
+        distance: float = RETREAT_M,
+        duration_s: float = RETREAT_S,
+    ) -> None:
+        """Back each of ``hands`` (opened first if it still holds) ``distance`` [m] away along
+        its approach axis in at least ``duration_s`` simulated seconds (more if the joint
+        limits need it), then settle; the world advances by ``advance(dt)``."""
+        for h in hands:
+            self._check_hand(h)  # type: ignore[attr-defined]
+            if self._held[h] is not None:
+                self.release(h)  # type: ignore[attr-defined]
+        moving = tuple(h for h in self.names if h in hands)
+        path = [np.concatenate([self._actual(h) for h in moving]),
+                np.concatenate([self._backed_off(h, distance) for h in moving])]
+        self._run(moving, TimedPath(path, self.limits, duration_s), advance)
 
-    def _clearer_leg(
-        self, hand: str, link: str, firsts: dict[str, list[Vec]], final: list[Vec]
-    ) -> list[Vec]:
-        """``hand``'s first leg: direct to the pre-grasp pose or, when the direct leg's
-        sampled clearance (robot, scene and other links) is negative, through the clearest of
-        a few waypoints: the pre-grasp pose or the start backed :data:`DETOURS_M` further."""
-        direct = self._path_clearance(hand, link, [firsts])[1]
-        if direct >= 0 or np.array_equal(final[0], final[-1]):
-            return firsts[hand]
-        best, leg = direct, firsts[hand]
-        for end, dists in ((final[0], DETOURS_M), (firsts[hand][0], DETOURS_M[:1])):
-            pos, quat = self._hand_pose(hand, end)
-            for dist in dists:
-                via_pos = pos - dist * quat_to_mat(quat)[:, 2]
-                via = self.solve_ik(hand, via_pos, quat, iterations=100, start=end)
-                detour = [firsts[hand][0], via, final[0]]
-                score = self._path_clearance(hand, link, [{**firsts, hand: detour}])[1]
-                if score > best:
-                    best, leg = score, detour
-        return leg
+    # -- planning the three motions ---------------------------------------------------------
+    def _plan_backoff(self) -> _Stage | None:
+        """The back-off of the opened hands near the object (None if there is none)."""
+        near = tuple(h for h in self.names if self._held[h] is None and self._near_object(h))
+        if not near:
+            return None
+        start = np.concatenate([self._actual(h) for h in near])
+        goal = np.concatenate([self._backed_off(h, APPROACH_RETREAT_M) for h in near])
+        self.checker.sync(self.data.qpos)
+        query = Query(near, self._contacts_off(near), NEAR_CLEARANCE_M)
+        path = plan_path(self.checker, self._ramp(query, start, goal), start, goal,
+                         self._bounds(near))
+        if path is None:  # nothing better found: straight back (the physics has the say)
+            path = [start, goal]
+        return _Stage(near, TimedPath(path, self.limits))
 
-    def _hand_pose(self, hand: str, q: Vec) -> tuple[Vec, Vec]:
-        """World pose (position [m], wxyz) of ``hand`` with its arm at ``q``."""
-        d = self.ik_data
-        d.qpos[:] = self.data.qpos
-        d.qpos[self._q[hand]] = q
-        mujoco.mj_kinematics(self.model, d)
-        return d.xpos[self._hand[hand]].copy(), d.xquat[self._hand[hand]].copy()
+    def _plan_transfer(
+        self, moving: tuple[str, ...], starts: dict[str, Vec], goals: dict[str, Vec],
+        legs: dict[str, list[Vec]], cands: dict[str, Candidate],
+    ) -> TimedPath:
+        """The collision-free joint-space motion of ``moving`` from ``starts`` to ``goals``
+        (the pre-grasp poses; home for an idle arm)."""
+        chk = self.checker
+        chk.sync(self.data.qpos)
+        chk.set_arms(starts)
+        start = np.concatenate([starts[h] for h in moving])
+        goal = np.concatenate([goals[h] for h in moving])
+        # A leg out of reach ends the transfer on the grasp itself: its gripper meets its link.
+        grips = self.grip_pairs({h: cands[h].link for h in legs
+                                 if np.array_equal(legs[h][0], legs[h][-1])})
+        # Not the links the grippers have just let go of: the ramp lets them out of those
+        # near the start only (afterwards the physics collides with them again).
+        query = self._ramp(Query(moving, grips), start, goal)
+        path = plan_path(chk, query, start, goal, self._bounds(moving))
+        if path is None:
+            raise NotExecutableError(
+                "no collision-free arm motion found to the pre-grasp poses of "
+                + ", ".join(f"{h} on {cands[h].link}" for h in legs))
+        return TimedPath(path, self.limits)
+
+    def _retarget(
+        self, moving: tuple[str, ...], cands: dict[str, Candidate], final: TimedPath
+    ) -> TimedPath:
+        """The final legs again, to where the grasps are now (the links moved while the arms
+        travelled): one segment from each pre-grasp pose to its grasp re-solved, if that is
+        collision-free (else the legs as planned)."""
+        start = np.concatenate([self._actual(h) for h in moving])
+        goal = []
+        for h in moving:
+            c = cands[h]
+            pos, quat = self.grasp_poses(h, c.link)[c.index]
+            goal.append(self.solve_ik(h, pos, quat, iterations=150, start=c.q))
+        path = [start, np.concatenate(goal)]
+        chk = self.checker
+        chk.sync(self.data.qpos)
+        query = Query(moving, self.grip_pairs({h: cands[h].link for h in moving}),
+                      NEAR_CLEARANCE_M)
+        if not chk.path_valid(path, query):
+            return final
+        return TimedPath(path, self.limits, final.duration)
+
+    def _contacts_off(self, hands: tuple[str, ...]) -> frozenset[tuple[int, int]]:
+        """The geom pairs of ``hands``' grippers and the links the physics lets them touch now
+        (a link let go of and not yet left): the checks allow them too."""
+        out: frozenset[tuple[int, int]] = frozenset()
+        for h in hands:
+            for link in self._no_contact[h]:
+                out |= self.grip_pairs({h: link})
+        return out
+
+    def _ramp(self, query: Query, start: Vec, goal: Vec) -> Query:
+        """``query`` with its clearance relaxed near a start or goal nearer than it."""
+        chk = self.checker
+        full = float(query.clearance) if not callable(query.clearance) else NEAR_CLEARANCE_M
+        ends = []
+        for q in (start, goal):
+            clear, _ = chk.clearance(chk.split(query.hands, q), Query(query.hands, query.allowed))
+            ends.append((q, clear))
+        return Query(query.hands, query.allowed, ramped(ends, full))
+
+    def _actual(self, hand: str) -> Vec:
+        """Where ``hand``'s arm is [rad] (not where it was commanded: a tracking arm lags),
+        within its joint limits. Motions start here."""
+        q = self.data.qpos[self._q[hand]]
+        return np.clip(q, self._lo[hand], self._hi[hand])
+
+    def _bounds(self, hands: tuple[str, ...]) -> tuple[Vec, Vec]:
+        lo = np.concatenate([self._lo[h] for h in hands])
+        hi = np.concatenate([self._hi[h] for h in hands])
+        return lo, hi
 
     def _chosen(self, hand: str, link: str) -> Candidate:
         """The grasp :meth:`assign` chose for (hand, link) if it is still current, else the
@@ -154,69 +226,69 @@ class ApproachMotion(GraspChoice):
             return plan[0]
         return self.best_grasp(hand, link)
 
-    def _near_object(self, hand: str) -> bool:
-        """Whether ``hand``'s grasp point is within :data:`RETREAT_NEAR` of a link."""
-        r_h = self.data.xmat[self._hand[hand]].reshape(3, 3)
-        point = self.data.xpos[self._hand[hand]] + self._depth * r_h[:, 2]
-        for link, gid in self.geoms[hand].links.items():
-            b = self.model.body(link).id
-            base, u = self.data.xpos[b], -self.data.xmat[b].reshape(3, 3)[:, 2]
-            length = 2.0 * float(self.model.geom_size[gid, 1])
-            t = float(np.clip(np.dot(point - base, u), 0.0, length))
-            if np.linalg.norm(point - base - t * u) < RETREAT_NEAR:
-                return True
-        return False
-
-    def _backed_off(self, hand: str, distance: float) -> Vec:
-        """Joint angles [rad] putting ``hand`` ``distance`` [m] back along its approach axis."""
-        r_h = self.data.xmat[self._hand[hand]].reshape(3, 3)
-        pos = self.data.xpos[self._hand[hand]] - distance * r_h[:, 2]
-        start = self.data.qpos[self._q[hand]].copy()
-        quat = self.data.xquat[self._hand[hand]].copy()
-        return self.solve_ik(hand, pos, quat, iterations=100, start=start)
-
-    def _path_clearance(
-        self, hand: str, link: str, legs: list[dict[str, list[Vec]]]
-    ) -> tuple[float, float]:
-        """Smallest clearance [m] of ``hand``'s arm on its way to ``link`` at
-        :data:`PATH_CHECKS` configurations along each leg (per hand, joint-space waypoints;
-        both arms moving; the last leg also at :data:`END_CHECK` of the way): to the torso,
-        the other arm and the scene; and to those or the object's links (the gripper may touch
-        ``link``; the links as they are now)."""
-        d = self.ik_data
-        robot, links = np.inf, np.inf
-        for j, leg in enumerate(legs):
-            xs = [i / (PATH_CHECKS + 1) for i in range(1, PATH_CHECKS + 1)]
-            for x in xs + ([END_CHECK] if j == len(legs) - 1 else []):
-                s = x * x * (3.0 - 2.0 * x)
-                d.qpos[:] = self.data.qpos
-                for h, path in leg.items():
-                    d.qpos[self._q[h]] = _along(path, s)[0]
-                mujoco.mj_kinematics(self.model, d)
-                robot = min(robot, clearance(self.model, d, self.geoms[hand], link, False)[0])
-                links = min(links, clearance(self.model, d, self.geoms[hand], link, True)[0])
-        return float(robot), float(links)
-
-    def _move(
-        self,
-        paths: dict[str, list[Vec]],
-        duration_s: float,
-        advance: Callable[[float], None],
+    # -- moving ----------------------------------------------------------------------------
+    def _run(
+        self, hands: tuple[str, ...], path: TimedPath, advance: Callable[[float], None],
         settle_s: float = APPROACH_SETTLE_S,
     ) -> None:
-        """Each hand's arm along its joint-space waypoints (piecewise linear, timed by one
-        smoothstep) in ``duration_s`` simulated seconds, then ``settle_s`` of settling."""
-        n = max(1, int(round(duration_s / APPROACH_DT)))
-        dt = duration_s / n
-        for i in range(1, n + 1):
-            x = i / n
-            s = x * x * (3.0 - 2.0 * x)  # smoothstep: start and stop at rest
-            ds = 6.0 * x * (1.0 - x) / duration_s  # its rate [1/s]
-            for h, path in paths.items():
-                self._target_q[h], slope = _along(path, s)
-                self._target_qd[h] = ds * slope
-            advance(dt)
-        for h in paths:
+        """Follow ``path`` (stacked joint angles of ``hands``) in simulated time: the servo
+        set-points are sampled from it at every physics step (:meth:`control`), the world
+        advanced in :data:`APPROACH_DT` chunks; then ``settle_s`` of settling."""
+        self._active = (float(self.data.time), path, hands)
+        end = self.data.time + path.duration
+        while self.data.time < end - 1e-9:
+            advance(min(APPROACH_DT, end - self.data.time))
+        self._active = None
+        q_end, _ = path.at(path.duration)
+        for i, h in enumerate(hands):
+            self._target_q[h] = q_end[7 * i : 7 * i + 7].copy()
             self._target_qd[h] = np.zeros(len(ARM_JOINTS))
+            self._target_qdd[h] = np.zeros(len(ARM_JOINTS))
         if settle_s > 0:
             advance(settle_s)
+
+    def _follow(self, dt: float) -> None:
+        """Set-points of the arms on an active path at the end of the coming step."""
+        if self._active is None:
+            return
+        t0, path, hands = self._active
+        q, qd, qdd = path.state(float(self.data.time) + dt - t0)
+        for i, h in enumerate(hands):
+            self._target_q[h] = q[7 * i : 7 * i + 7]
+            self._target_qd[h] = qd[7 * i : 7 * i + 7]
+            self._target_qdd[h] = qdd[7 * i : 7 * i + 7]
+
+    def _record_paths(self, stages: list[_Stage | None]) -> None:
+        """The grasp points' planned traces (for pictures), a sample every 0.05 rad."""
+        traces: dict[str, list[Vec]] = {h: [] for h in self.names}
+        for stage in stages:
+            if stage is None:
+                continue
+            wps = stage.path.waypoints
+            for a, b in zip(wps, wps[1:], strict=False):
+                n = max(1, int(np.ceil(np.linalg.norm(b - a) / 0.05)))
+                for i in range(n + 1):
+                    q = a + (i / n) * (b - a)
+                    for k, h in enumerate(stage.hands):
+                        pos, quat = self._hand_pose(h, q[7 * k : 7 * k + 7])
+                        traces[h].append(pos + self._depth * quat_to_mat(quat)[:, 2])
+        self.last_paths.append({h: t for h, t in traces.items() if t})
+
+    def _hand_pose(self, hand: str, q: Vec) -> tuple[Vec, Vec]:
+        """World pose (position [m], wxyz) of ``hand`` with its arm at ``q``."""
+        d = self.ik_data
+        d.qpos[:] = self.data.qpos
+        d.qpos[self._q[hand]] = q
+        mujoco.mj_kinematics(self.model, d)
+        return d.xpos[self._hand[hand]].copy(), d.xquat[self._hand[hand]].copy()
+
+
+class _Stage:
+    """One motion of an approach: which hands, along which timed path."""
+
+    def __init__(self, hands: tuple[str, ...], path: TimedPath) -> None:
+        self.hands, self.path = hands, path
+
+    def split_end(self) -> dict[str, Vec]:
+        end = self.path.waypoints[-1]
+        return {h: end[7 * i : 7 * i + 7].copy() for i, h in enumerate(self.hands)}

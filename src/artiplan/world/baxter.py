@@ -6,27 +6,23 @@ by its torque motors (robosuite's limits: 50/100/50/50/15/15/15 N m): joint-spac
 inverse-kinematics solution (damped least squares on ``mj_jacBody``) plus the bias forces
 (gravity, Coriolis). A grasp welds the hand body to the link at their current relative pose.
 Which arm holds and which rotates, and where each grasps, is chosen in
-:mod:`artiplan.world.grasping`: reach first (a pairing where both hands reach whenever one
-exists), then clearance, then joint-limit room over a +-30 deg turn.
+:mod:`artiplan.world.grasping` and :mod:`artiplan.world.pairs`: reach first, then (with
+``avoid_collisions``) a pair whose final legs, grasps and every degree of the planned turn are
+collision-free, then joint-limit room.
 
-Limits of this implementation (honest): the fingers close for show, the weld holds the link;
-by default an arm *jumps* to its grasp (its IK solution is written into the state); with
-``approach_s`` > 0 it moves there in simulated time (after backing every opened hand that is
-near the object 6 cm off it) through a pre-grasp pose 7 cm back along the hand's approach
-axis, then straight in (:mod:`artiplan.world.approach`); the last few millimetres still
-jump. Arm contacts are off in the physics: nothing stops an arm that does pass through an
-obstacle. With ``avoid_collisions`` the grasps are *chosen* clear of the torso, the other arm,
-the pedestal, table, fixture and other links (:mod:`artiplan.world.collision`), at the grasp
-and at the rotating arm's poses turned +-30 deg on both planes (the holding arm at its grasp);
-the grasp IK is pushed away from obstacles. Not avoided: contacts during the rotation that
-the sweep's four sample poses miss (the tracking IK itself is blind to obstacles), arm-vs-link
-contacts during the rotation (links are not turned in the check), and collisions on the way
-of a retreat or of an approach (measured only: ``last_approach_clearance``).
+Arm contacts are on in the physics (:mod:`artiplan.world.contacts`): the arms collide with the
+torso, each other, the table, pedestal, fixture and the object; a gripper not with the link it
+holds. Every collision that happens is logged (``contacts.events``: geoms, when, how deep).
+
+By default an arm *jumps* to its grasp (its IK solution is written into the state); with
+``approach_s`` > 0 it moves there in simulated time along motions planned with OMPL and timed
+within Baxter's joint limits (:mod:`artiplan.world.approach`); the last millimetres (the links
+fell meanwhile) still jump. Not covered: the tracking IK during a rotation is not itself
+collision-aware (the turn was checked on the grasp choice's IK solutions every degree, the
+carried links turned rigidly, which they are not in the physics).
 """
 
 from __future__ import annotations
-
-from collections.abc import Callable
 
 import mujoco
 import numpy as np
@@ -43,15 +39,18 @@ from artiplan.world.approach import (  # noqa: F401 - re-exported (public names)
     RETREAT_M,
     RETREAT_S,
     ApproachMotion,
+    NotExecutableError,
 )
 from artiplan.world.baxter_model import (  # noqa: F401 - re-exported (public names)
     BAXTER_BASE,
+    BAXTER_MAX_LINKS,
     PREFIX,
     attach_baxter,
     baxter_layout,
     baxter_xml_path,
 )
 from artiplan.world.collision import ArmGeoms, arm_geoms
+from artiplan.world.contacts import ContactLog, link_bit, refresh_body_bits
 from artiplan.world.grasping import (  # noqa: F401 - re-exported (public names)
     REACH_TOLERANCE,
     SWEEP_DEG,
@@ -60,9 +59,13 @@ from artiplan.world.grasping import (  # noqa: F401 - re-exported (public names)
     OutOfReachError,
 )
 from artiplan.world.hands import Hands
+from artiplan.world.motion import ArmChecker
 from artiplan.world.rotations import Vec, quat_conj, quat_mul, quat_to_mat
 from artiplan.world.servo import ServoGains
+from artiplan.world.timing import Limits
 
+#: Physics steps between checks whether a gripper has left a link it let go of.
+GRIP_CHECK_STEPS = 5
 #: A comfortable start: elbows bent, hands in front of the torso.
 HOME = (0.0, -0.55, 0.0, 1.2, 0.0, 0.9, 0.0)
 
@@ -82,36 +85,20 @@ class BaxterHands(ApproachMotion, Hands):
         damping_ratio: float = 1.0,
         approach_s: float = 0.0,
         avoid_collisions: bool = True,
+        limits: Limits | None = None,
     ) -> None:
         """``kp_scale``: joint stiffness [N m/rad] per N m of motor limit; ``approach_s``: when
-        > 0, the arms move to their grasps in this many simulated seconds (gravity acting)
-        instead of jumping there; ``avoid_collisions``: score grasps by arm clearance (at the
-        grasp and over the rotation's sweep) and push the grasp IK away from obstacles."""
+        > 0, the arms move to their grasps in simulated time (gravity acting) along planned
+        motions taking at least this many seconds, instead of jumping there;
+        ``avoid_collisions``: choose only collision-free grasp pairs (final legs, grasps, the
+        planned turn), push the grasp IK away from obstacles; ``limits``: the joint limits
+        the motions are timed with (default Baxter's, :mod:`artiplan.world.timing`)."""
         super().__init__()
         self.kp_scale = kp_scale
         self.damping_ratio = damping_ratio
         self.approach_s = approach_s
         self.avoid_collisions = avoid_collisions
-
-    # -- motions between grasps (the approach itself: :mod:`artiplan.world.approach`) ------
-    def retreat(
-        self,
-        hands: list[str],
-        advance: Callable[[float], None],
-        distance: float = RETREAT_M,
-        duration_s: float = RETREAT_S,
-    ) -> None:
-        """Back each of ``hands`` (opened first if it still holds) ``distance`` [m] away along
-        its approach axis in ``duration_s`` simulated seconds, advancing the world with
-        ``advance(dt)``. :meth:`approach` does a shorter one itself."""
-        starts, goals = {}, {}
-        for h in hands:
-            self._check_hand(h)
-            if self._held[h] is not None:
-                self.release(h)
-            starts[h] = self.data.qpos[self._q[h]].copy()
-            goals[h] = self._backed_off(h, distance)
-        self._move({h: [starts[h], goals[h]] for h in hands}, duration_s, advance)
+        self.limits = limits or Limits()
 
     def extend_spec(self, spec: mujoco.MjSpec, obj: ArticulatedObject) -> None:
         attach_baxter(spec, obj)
@@ -156,6 +143,7 @@ class BaxterHands(ApproachMotion, Hands):
             sign = np.array([1, 1, 1, 1, 1, 1, 1.0]) if h == "right" else np.ones(7)
             data.qpos[self._q[h]] = sign * np.array(HOME)
         self._target_q = {h: data.qpos[self._q[h]].copy() for h in self.names}
+        self.home = {h: self._target_q[h].copy() for h in self.names}
         mujoco.mj_forward(model, data)
         # Turn each torque motor into a PD servo inside MuJoCo: force = kp (ctrl - q) - kv qd,
         # clipped to the motor's limit as a whole. Velocity feedback in the actuator is
@@ -193,6 +181,8 @@ class BaxterHands(ApproachMotion, Hands):
         self._held = {h: None for h in self.names}
         self.last_torque = {h: np.zeros(7) for h in self.names}
         self._target_qd = {h: np.zeros(len(ARM_JOINTS)) for h in self.names}
+        self._target_qdd = {h: np.zeros(len(ARM_JOINTS)) for h in self.names}
+        self._acc_vec, self._acc_out = np.zeros(model.nv), np.zeros(model.nv)
         #: How far [m] each hand jumped at its last grasp (0 after a perfect approach).
         self.last_jump_m = {h: 0.0 for h in self.names}
         #: Per hand, smallest arm clearance [m] at the intermediate configurations of the
@@ -200,6 +190,28 @@ class BaxterHands(ApproachMotion, Hands):
         self.last_approach_clearance = {}
         #: Per hand, the pre-grasp joint angles [rad] of the last approach.
         self.last_pregrasp = {}
+        #: Per approach, each moving hand's planned grasp-point trace [m] (for pictures).
+        self.last_paths = []
+        #: Per hand, the links its gripper has no contacts with (held, closing in on, or let
+        #: go of and not yet left); the link it is closing in on.
+        self._no_contact: dict[str, set[str]] = {h: set() for h in self.names}
+        self._closing: dict[str, str] = {}
+        self._steps = 0
+        self._active = None
+        self._link_index = {link: i for i, link in enumerate(obj.links, start=1)}
+        self.checker = ArmChecker(
+            model, dict(self._q),
+            {h: np.array(self.geoms[h].arm) for h in self.names},
+            {h: np.array(self.geoms[h].gripper) for h in self.names},
+            dict(self.geoms[self.names[0]].links),
+            {int(model.jnt_qposadr[model.actuator_trnid[aid, 0]]): open_
+             for h in self.names for aid, open_, _ in self._fingers[h]},
+        )
+        arm_ids = [g for h in self.names for g in self.geoms[h].arm]
+        #: Collisions of the arms in the physics (geoms, when, how deep).
+        self.contacts = ContactLog(
+            frozenset(arm_ids), {g: model.geom(g).name for g in range(model.ngeom)}
+        )
 
     # -- grasping ------------------------------------------------------------------------
     def grasp(self, hand: str, link: str) -> None:
@@ -225,6 +237,8 @@ class BaxterHands(ApproachMotion, Hands):
         r_h = self.data.xmat[hb].reshape(3, 3)
         rel_pos = r_h.T @ (self.data.xpos[lb] - self.data.xpos[hb])
         rel_quat = quat_mul(quat_conj(self.data.xquat[hb]), self.data.xquat[lb])
+        self._grip_contacts(hand, link, False)
+        self._closing.pop(hand, None)
         eq = self._weld[(hand, link)]
         self.model.eq_data[eq, 0:3] = 0.0
         self.model.eq_data[eq, 3:6] = rel_pos
@@ -232,6 +246,48 @@ class BaxterHands(ApproachMotion, Hands):
         self.data.eq_active[eq] = 1
         self._grip_offset[hand] = (rel_pos, rel_quat)
         self._held[hand] = link
+
+    def release(self, hand: str) -> None:
+        """Open ``hand``: the weld goes off; its gripper collides with the link again once it
+        has left it (:meth:`after_step`)."""
+        super().release(hand)
+
+    def close_in(self, hand: str, link: str) -> None:
+        """The gripper's final leg to ``link`` begins: no contacts between them (the fingers
+        straddle the link before they close; the grasp then welds it)."""
+        self._closing[hand] = link
+        self._grip_contacts(hand, link, False)
+
+    def _grip_contacts(self, hand: str, link: str, on: bool) -> None:
+        """Switch contacts between ``hand``'s gripper and ``link`` on or off."""
+        off = self._no_contact[hand]
+        if on == (link not in off):
+            return
+        bit = link_bit(self._link_index[link])
+        ids = np.array(self.geoms[hand].gripper, dtype=int)
+        if on:
+            self.model.geom_conaffinity[ids] |= bit
+            off.discard(link)
+        else:
+            self.model.geom_conaffinity[ids] &= ~bit
+            off.add(link)
+        refresh_body_bits(self.model, {int(self.model.geom_bodyid[g]) for g in ids})
+
+    def after_step(self) -> None:
+        """Log the arms' collisions of the step just taken; every GRIP_CHECK_STEPS steps,
+        switch a gripper's contacts with a link it let go of back on once it is clear."""
+        self.contacts.update(self.data)
+        self._steps += 1
+        if self._steps % GRIP_CHECK_STEPS:
+            return
+        for h in self.names:
+            for link in list(self._no_contact[h]):
+                if link in (self._held[h], self._closing.get(h)):
+                    continue
+                lg = self.geoms[h].links[link]
+                if all(mujoco.mj_geomDistance(self.model, self.data, int(g), lg, 0.002, None)
+                       >= 0.002 for g in self.geoms[h].gripper):
+                    self._grip_contacts(h, link, True)
 
     def _grasp_solution(self, hand: str, link: str) -> tuple[Vec, float]:
         """(joint angles [rad], miss [m]) of the grasp to close now."""
@@ -271,12 +327,18 @@ class BaxterHands(ApproachMotion, Hands):
         """Servo set-points: the IK targets plus feed-forward; the motors' PD runs inside
         MuJoCo and their force is clipped to Baxter's limits."""
         d = self.data
+        self._follow(dt)
         for h in self.names:
             va, act = self._v[h], self._act[h]
             kp, kv = self._kp[h], self._kv[h]
             # Feed-forward (bias forces the gravity compensation leaves, desired velocity)
             # folded into the servo's set-point.
             ff = d.qfrc_bias[va] - d.qfrc_gravcomp[va] + kv * self._target_qd[h]
+            if self._target_qdd[h].any():  # inertia feed-forward along a planned motion
+                self._acc_vec[:] = 0.0
+                self._acc_vec[va] = self._target_qdd[h]
+                mujoco.mj_mulM(self.model, d, self._acc_out, self._acc_vec)
+                ff = ff + self._acc_out[va]
             d.ctrl[act] = self._target_q[h] + ff / kp
             self.last_torque[h] = d.actuator_force[act].copy()
             for aid, open_, closed in self._fingers[h]:

@@ -1,5 +1,7 @@
 """Baxter's model in the scene: robosuite's MJCF found at run time (never imported, never
-copied), its grippers, the pedestal, and one inactive weld per (hand, link)."""
+copied), its grippers, the pedestal, one inactive weld per (hand, link), and the contact bits
+that make the arms collide with the torso, each other, the scene and the object
+(:mod:`artiplan.world.contacts`)."""
 
 from __future__ import annotations
 
@@ -9,11 +11,14 @@ from pathlib import Path
 import mujoco
 
 from artiplan.model import ArticulatedObject
+from artiplan.world.contacts import LINK, SCENE, TORSO, arm_bits, link_bit
 from artiplan.world.mjcf import SceneLayout
 
 #: Where Baxter's base sits in the world [m] (on a pedestal, facing +x).
 BAXTER_BASE = (0.0, 0.0, 0.9)
 PREFIX = "baxter_"
+#: The longest chain Baxter serves: longer ones hang below its reach (use virtual hands).
+BAXTER_MAX_LINKS = 6
 
 
 def baxter_xml_path() -> Path:
@@ -50,10 +55,11 @@ def attach_baxter(spec: mujoco.MjSpec, obj: ArticulatedObject) -> None:
             robot.body(f"{hand}_hand").add_frame().attach_body(
                 gripper.worldbody.first_body(), f"{hand}_gripper_", ""
             )
-    for g in robot.geoms:  # no arm collisions (see the module docstring)
-        g.contype, g.conaffinity = 0, 0
-        if g.group == 0:  # robosuite's collision shapes: keep them out of the images
-            g.group = 3
+    for b in robot.bodies:
+        for g in b.geoms:
+            g.contype, g.conaffinity = _bits(b.name, g.name, g.group, obj.n_links)
+            if g.group == 0:  # robosuite's collision shapes: keep them out of the images
+                g.group = 3
     for b in robot.bodies:
         # Baxter's shoulder springs and controller carry the arm's own weight: model that as
         # MuJoCo's passive gravity compensation, so the motors' limits are left for motion
@@ -65,9 +71,13 @@ def attach_baxter(spec: mujoco.MjSpec, obj: ArticulatedObject) -> None:
         size=[0.22, BAXTER_BASE[2] / 2 - 0.05, 0],
         pos=[BAXTER_BASE[0] - 0.05, BAXTER_BASE[1], BAXTER_BASE[2] / 2 - 0.05],
         rgba=[0.2, 0.2, 0.22, 1.0],
-        contype=0,
+        contype=SCENE,
         conaffinity=0,
     )
+    for name in ("fixture_block", "fixture_arm"):
+        spec.geom(name).contype = SCENE
+    for i, link in enumerate(obj.links, start=1):
+        spec.geom(f"{link}_geom").contype = LINK | link_bit(i)
     frame = spec.worldbody.add_frame(pos=list(BAXTER_BASE))
     frame.attach_body(robot.worldbody.first_body(), PREFIX, "")
     for hand in ("left", "right"):
@@ -79,3 +89,18 @@ def attach_baxter(spec: mujoco.MjSpec, obj: ArticulatedObject) -> None:
             eq.name1, eq.name2 = f"{PREFIX}{hand}_hand", link
             eq.active = False
             eq.solref = [0.005, 1.0]
+
+
+def _bits(body: str, geom: str, group: int, n_links: int) -> tuple[int, int]:
+    """(contype, conaffinity) of a robot geom by its (unprefixed) body and name: collision
+    shapes (group 0) of the arms, torso and head collide; visual meshes do not."""
+    if group != 0:
+        return 0, 0
+    if "torso" in body or "head" in body:
+        return TORSO, 0
+    hand = "left" if body.startswith("left_") else "right"
+    if "gripper" in body:
+        return arm_bits(hand, "gripper", n_links)
+    # The shoulder and the e0 housing next to it sit inside the torso mesh's convex hull.
+    shoulder = "shoulder" in body or geom.endswith("_e0_collision")
+    return arm_bits(hand, "shoulder" if shoulder else "arm", n_links)

@@ -35,6 +35,12 @@ RETRY_MISS = 0.05
 #: Grasp points along the link [fraction of its length from the base-end joint]: the centre
 #: first, then a quarter length away from the joint shared with the other grasped link.
 CENTRE, OFF_CENTRE = 0.5, 0.25
+#: A second tier of grasps (tried when the first gives no collision-free pair): the approach
+#: axis tilted this far [deg] along the link either way, and one more point on the held link
+#: (toward the rotated one) and on the rotated link (toward its pivot; not nearer than this:
+#: at 0.25 the rotation's tracking diverged, world.md).
+TILT_DEG = 30.0
+NEAR_PIVOT = 0.35
 #: Pull of the IK's null-space term toward mid-range joint angles [rad per iteration].
 NULLSPACE_GAIN = 0.05
 #: The same while tracking, called every 2 ms step: small, or the arm's self-motion outruns
@@ -66,6 +72,8 @@ IK_TOL_M = 1e-5
 IK_TOL_RAD = 1e-4
 #: Candidates per hand tried jointly with the other hand's (KEEP x KEEP pairs).
 KEEP = 3
+#: Score of a pairing without any collision-free pair (above every other score).
+INFEASIBLE = 100.0
 
 
 class OutOfReachError(RuntimeError):
@@ -82,8 +90,16 @@ class Candidate:
         q: The IK solution [rad] (the arm's 7 joints).
         miss: Its pose error [m + 0.1 m/rad].
         score: Reach, clearance (without the other arm), limit room, nearness.
-        sweep: Arm joint angles at the turned grasps (rotating hand only).
-        sweep_score: Missing joint-limit room over the sweep.
+        sweep: Arm joint angles at the turned grasps (rotating hand only): every
+            :data:`artiplan.world.turning.STEP_DEG` of the planned turn, or at +-SWEEP_DEG on
+            both planes when the turn is not known.
+        sweep_score: Missing joint-limit room over the sweep, and the share of a planned
+            turn the arm cannot follow (:meth:`artiplan.world.pairs.PairChoice._turn_path`).
+        leg: Joint angles [rad] of the final straight leg, pre-grasp pose first (computed
+            when the candidate's pair is checked).
+        solo: '' when the candidate is collision-free on its own (final leg, grasp, turn;
+            the other arm aside), else why not; None until checked (for ``turn_of``).
+        safe: How far [deg] its turn is collision-free on its own (-1: not even the grasp).
     """
 
     hand: str
@@ -96,6 +112,10 @@ class Candidate:
     score: float
     sweep: list[Vec] = field(default_factory=list)
     sweep_score: float = 0.0
+    leg: list[Vec] = field(default_factory=list)
+    solo: str | None = None
+    safe: float = float("inf")
+    turn_of: object = None
 
     @property
     def reachable(self) -> bool:
@@ -137,20 +157,36 @@ class GraspChoice:
         hold, rotate = self._roles
         if link == hold:  # the shared joint is at its tip
             return (CENTRE, CENTRE - OFF_CENTRE)
-        if link == rotate:  # ... at its base
+        if link == rotate:  # ... at its base (nearer it the turn's tracking failed: world.md)
             return (CENTRE, CENTRE + OFF_CENTRE)
         return (CENTRE, CENTRE - OFF_CENTRE, CENTRE + OFF_CENTRE)
 
+    def extra_fractions(self, link: str) -> tuple[float, ...]:
+        """More grasp points on ``link``, tried only when the first ones give no
+        collision-free pair (:meth:`grasp_poses`, tier 2)."""
+        hold, rotate = self._roles
+        if link == hold:
+            return (CENTRE + OFF_CENTRE,)
+        if link == rotate:
+            return (NEAR_PIVOT,)
+        return ()
+
     def grasp_poses(self, hand: str, link: str, n_turns: int = 8) -> list[tuple[Vec, Vec]]:
-        """Candidate hand poses on ``link``: at each of :meth:`grasp_fractions`, the hand's z
-        axis (its approach) perpendicular to the link, turned about it in ``n_turns`` steps,
-        x along +-link."""
+        """Candidate hand poses on ``link``. Tier 1 (the first :meth:`tier_size`): at each of
+        :meth:`grasp_fractions`, the hand's z axis (its approach) perpendicular to the link,
+        turned about it in ``n_turns`` steps, x along +-link. Tier 2: the same points with the
+        approach axis tilted TILT_DEG either way along the link, and :meth:`extra_fractions`
+        perpendicular. Consecutive poses differ by half a turn about the hand's axis."""
         b = self.model.body(link).id
         u = -self.data.xmat[b].reshape(3, 3)[:, 2]
         length = 2.0 * float(self.model.geom(f"{link}_geom").size[1])
         shoulder = self.data.xpos[self.model.body(f"baxter_{hand}_upper_shoulder").id]
+        tilt = np.radians(TILT_DEG)
+        sets = [(f, 0.0) for f in self.grasp_fractions(link)]
+        sets += [(f, t) for t in (tilt, -tilt) for f in self.grasp_fractions(link)]
+        sets += [(f, 0.0) for f in self.extra_fractions(link)]
         poses = []
-        for f in self.grasp_fractions(link):
+        for f, t in sets:
             point = self.data.xpos[b] + f * length * u
             z0 = point - shoulder
             z0 -= np.dot(z0, u) * u
@@ -160,35 +196,53 @@ class GraspChoice:
             for i in range(n_turns):
                 a = 2.0 * np.pi * i / n_turns
                 z = np.cos(a) * z0 + np.sin(a) * np.cross(u, z0)
-                for x in (u, -u):
+                z = np.cos(t) * z + np.sin(t) * u
+                along = u - np.dot(u, z) * z
+                along /= np.linalg.norm(along)
+                for x in (along, -along):
                     mat = np.column_stack([x, np.cross(z, x), z])
                     quat = np.empty(4)
                     mujoco.mju_mat2Quat(quat, mat.ravel())
                     poses.append((point - self._depth * z, quat))
         return poses
 
-    def candidates(self, hand: str, link: str) -> list[Candidate]:
-        """Every candidate grasp of ``link`` by ``hand``, solved and scored, best first (the
-        other arm ignored: the pair is scored in :meth:`_pair_score`). Cached per state."""
+    def tier_size(self, link: str, n_turns: int = 8) -> int:
+        """How many of :meth:`grasp_poses` are tier 1."""
+        return 2 * n_turns * len(self.grasp_fractions(link))
+
+    def candidates(self, hand: str, link: str, tier: int = 1) -> list[Candidate]:
+        """The candidate grasps of ``link`` by ``hand`` (tier 1, or tiers 1 and 2: see
+        :meth:`grasp_poses`), solved and scored, best first (the other arm ignored: the pair
+        is checked in :mod:`artiplan.world.pairs`). Cached per state."""
         key = (hand, link, self._roles, self.data.time, self.data.qpos.tobytes())
-        cached = self._cand_cache.get(key)
+        first = self._cand_cache.get((*key, 1))
+        cached = self._cand_cache.get((*key, tier)) or (first if tier == 1 else None)
         if cached is not None:
             return cached
-        out = []
+        poses = self.grasp_poses(hand, link)
+        start = 0 if first is None else self.tier_size(link)
+        out = self._solve_candidates(hand, link, poses, start, self.tier_size(link)
+                                     if tier == 1 else len(poses))
+        out = sorted((first or []) + out, key=lambda c: c.score)
+        self._cand_cache[(*key, tier)] = out
+        while len(self._cand_cache) > 16:  # only the current motion's grasps matter
+            self._cand_cache.pop(next(iter(self._cand_cache)))
+        return out
+
+    def _solve_candidates(
+        self, hand: str, link: str, poses: list[tuple[Vec, Vec]], start: int, stop: int
+    ) -> list[Candidate]:
+        """Candidates of ``poses[start:stop]`` (IK, reach, clearance, limit room)."""
+        out: list[Candidate] = []
         q_now = self.data.qpos[self._q[hand]].copy()
-        mid = 0.5 * (self._lo[hand] + self._hi[hand])
-        avoid = link if self.avoid_collisions else None
-        for index, (pos, quat) in enumerate(self.grasp_poses(hand, link)):
-            q = self.solve_ik(hand, pos, quat, iterations=150, avoid=avoid)
-            miss = self.ik_miss(hand, pos, quat)  # leaves ik_data's kinematics at q
-            if REACH_TOLERANCE < miss < RETRY_MISS:
-                q2 = self.solve_ik(hand, pos, quat, iterations=200, start=mid, avoid=avoid)
-                miss2 = self.ik_miss(hand, pos, quat)
-                if miss2 < miss:
-                    q, miss = q2, miss2
-                else:  # put ik_data's kinematics back at q
-                    self.ik_data.qpos[self._q[hand]] = q
-                    mujoco.mj_kinematics(self.model, self.ik_data)
+        for index in range(start, stop):
+            pos, quat = poses[index]
+            q, miss = self._flipped(hand, out[-1]) if index % 2 and out else (None, 0.0)
+            if q is None:
+                q, miss = self._solve_grasp(hand, link, pos, quat)
+            else:  # put ik_data's kinematics at q
+                self.ik_data.qpos[self._q[hand]] = q
+                mujoco.mj_kinematics(self.model, self.ik_data)
             score = miss + (UNREACHABLE + MISS_WEIGHT * miss if miss > REACH_TOLERANCE else 0.0)
             if self.avoid_collisions:
                 clear = clearance(self.model, self.ik_data, self.geoms[hand], link, True, False)
@@ -196,23 +250,35 @@ class GraspChoice:
             score += 0.05 * max(0.0, LIMIT_MARGIN - self.room(hand, q))
             score += 0.002 * float(np.linalg.norm(q - q_now))  # stay near where the arm is
             out.append(Candidate(hand, link, index, pos, quat, q, miss, score))
-        out.sort(key=lambda c: c.score)
-        self._cand_cache[key] = out
-        while len(self._cand_cache) > 8:  # only the current motion's grasps matter
-            self._cand_cache.pop(next(iter(self._cand_cache)))
         return out
 
-    def _rotating_best(self, hand: str, link: str, keep: int) -> list[Candidate]:
-        """The ``keep`` best candidates by score + sweep score. The sweep (4 IK solves) only
-        adds, so candidates are swept in score order until none can enter the best ``keep``."""
-        done: list[Candidate] = []
-        for c in self.candidates(hand, link):
-            if len(done) >= keep and c.score >= sorted(d.total for d in done)[keep - 1]:
-                break
-            if c.reachable and not c.sweep:
-                self._sweep(c)
-            done.append(c)
-        return sorted(done, key=lambda c: c.total)[:keep]
+    def _solve_grasp(self, hand: str, link: str, pos: Vec, quat: Vec) -> tuple[Vec, float]:
+        """(IK solution [rad], miss) of a grasp pose; a near miss is solved again from
+        mid-range. Leaves ``ik_data``'s kinematics at the solution."""
+        avoid = link if self.avoid_collisions else None
+        q = self.solve_ik(hand, pos, quat, iterations=150, avoid=avoid)
+        miss = self.ik_miss(hand, pos, quat)
+        if REACH_TOLERANCE < miss < RETRY_MISS:
+            mid = 0.5 * (self._lo[hand] + self._hi[hand])
+            q2 = self.solve_ik(hand, pos, quat, iterations=200, start=mid, avoid=avoid)
+            miss2 = self.ik_miss(hand, pos, quat)
+            if miss2 < miss:
+                return q2, miss2
+            self.ik_data.qpos[self._q[hand]] = q
+            mujoco.mj_kinematics(self.model, self.ik_data)
+        return q, miss
+
+    def _flipped(self, hand: str, c: Candidate) -> tuple[Vec | None, float]:
+        """The solution of ``c``'s pose turned half a turn about the hand's axis (fingers the
+        other way): the same arm with w2 +-pi (w2's axis is the hand's z axis), when that is
+        within w2's range; (None, 0) otherwise."""
+        for step in (np.pi, -np.pi):
+            w2 = c.q[6] + step
+            if self._lo[hand][6] <= w2 <= self._hi[hand][6]:
+                q = c.q.copy()
+                q[6] = w2
+                return q, c.miss
+        return None, 0.0
 
     def _sweep(self, c: Candidate) -> None:
         """Turn the grasp +-SWEEP_DEG about the link's joint, about the vertical and the
@@ -244,77 +310,6 @@ class GraspChoice:
                 missing += max(0.0, LIMIT_MARGIN - room)
         c.sweep_score = SWEEP_WEIGHT * missing
 
-    # -- pairs ----------------------------------------------------------------------------
-    def _pair_score(self, hold: Candidate | None, rot: Candidate, q_hold: Vec) -> float:
-        """Score of rotating with ``rot`` while the other arm is at ``q_hold`` (its grasp
-        ``hold``, or where it is when it grasps nothing): both candidates' own scores plus
-        the arms' clearance to each other at the grasps and, over the sweep, the rotating
-        arm's clearance to the torso, scene and the holding arm."""
-        score = rot.total + (hold.total if hold is not None else 0.0)
-        if not self.avoid_collisions:
-            return score
-        d, m = self.ik_data, self.model
-        d.qpos[:] = self.data.qpos
-        d.qpos[self._q[self._other(rot.hand)]] = q_hold
-        geoms = self.geoms[rot.hand]
-        clear = np.inf
-        for i, q in enumerate([rot.q, *rot.sweep]):
-            d.qpos[self._q[rot.hand]] = q
-            mujoco.mj_kinematics(m, d)
-            # At the grasp the rest is in the candidates' scores; turned, everything but links
-            # (which turn with the hand and are not moved here).
-            with_body = i > 0
-            clear = min(clear, clearance(m, d, geoms, rot.link, False, True, with_body)[0])
-        return score + CLEARANCE_WEIGHT * max(0.0, CLEARANCE_MARGIN - float(clear))
-
-    def plan_pair(
-        self, hold_hand: str, hold_link: str | None, rot_hand: str, rot_link: str
-    ) -> tuple[float, Candidate | None, Candidate]:
-        """(score, holding candidate, rotating candidate) of the best pair; ``hold_link``
-        None: the holding arm grasps nothing (L1 is clamped) and stays where it is."""
-        keep = KEEP if self.avoid_collisions else 1
-        rots = self._rotating_best(rot_hand, rot_link, keep)
-        holds: list[Candidate | None] = [None]
-        if hold_link is not None:
-            holds = list(self.candidates(hold_hand, hold_link)[:keep])
-        best: tuple[float, Candidate | None, Candidate] | None = None
-        for h in holds:
-            q_hold = h.q if h is not None else self.data.qpos[self._q[hold_hand]].copy()
-            for r in rots:
-                s = self._pair_score(h, r, q_hold)
-                if best is None or s < best[0]:
-                    best = (s, h, r)
-        assert best is not None
-        return best
-
-    def best_grasp(self, hand: str, link: str) -> Candidate:
-        """The best candidate for ``hand`` alone, the other arm where it is now."""
-        other = self._other(hand)
-        q_other = self.data.qpos[self._q[other]].copy()
-        if link == self._roles[1]:
-            return self.plan_pair(other, None, hand, link)[2]
-        cands = self.candidates(hand, link)[: KEEP if self.avoid_collisions else 1]
-        return min(cands, key=lambda c: self._pair_score(None, c, q_other))
-
-    def assign(self, hold_link: str, rotate_link: str) -> tuple[str, str]:
-        """Which arm holds and which rotates: a pairing in which both grasps reach if there
-        is one, then the clearer, then the rest of the score. Remembers the chosen grasps (for
-        :meth:`approach` and :meth:`grasp`) and the roles (where the grasp points are)."""
-        self._roles = (hold_link, rotate_link)
-        clamped = hold_link == self._clamped  # L1: held by the fixture, not by a hand
-        best: tuple[float, str, Candidate | None, str, Candidate] | None = None
-        for hold_hand, rot_hand in (self.names, self.names[::-1]):
-            s, h, r = self.plan_pair(hold_hand, None if clamped else hold_link, rot_hand,
-                                     rotate_link)
-            if best is None or s < best[0]:
-                best = (s, hold_hand, h, rot_hand, r)
-        assert best is not None
-        _, hold_hand, h, rot_hand, r = best
-        self._plan = {rot_hand: (r, self.data.time)}
-        if h is not None:
-            self._plan[hold_hand] = (h, self.data.time)
-        return hold_hand, rot_hand
-
     # -- inverse kinematics ---------------------------------------------------------------
     def room(self, hand: str, q: Vec) -> float:
         """Smallest distance [rad] of ``q`` to a joint limit of ``hand``'s arm."""
@@ -345,21 +340,26 @@ class GraspChoice:
         jp, jr = np.zeros((3, m.nv)), np.zeros((3, m.nv))
         err = np.zeros(6)
         q_err = np.empty(4)
+        conj = np.empty(4)
         push = np.zeros(len(qa))
         mid = 0.5 * (self._lo[hand] + self._hi[hand])
         span = self._hi[hand] - self._lo[hand]
+        lo, hi = self._lo[hand], self._hi[hand]
+        jac = np.empty((6, len(va)))
+        damp = damping**2 * np.eye(6)
+        rhs = np.empty((6, 2))
+        tol_p2, tol_r2 = tol[0] ** 2, tol[1] ** 2
         for it in range(iterations):
             mujoco.mj_kinematics(m, d)
             mujoco.mj_comPos(m, d)
             err[:3] = pos - d.xpos[body]
-            mujoco.mju_mulQuat(q_err, quat, quat_conj(d.xquat[body]))
+            mujoco.mju_negQuat(conj, d.xquat[body])
+            mujoco.mju_mulQuat(q_err, quat, conj)
             mujoco.mju_quat2Vel(err[3:], q_err, 1.0)
-            if np.linalg.norm(err[:3]) < tol[0] and np.linalg.norm(err[3:]) < tol[1]:
+            if err[:3] @ err[:3] < tol_p2 and err[3:] @ err[3:] < tol_r2:
                 break
             mujoco.mj_jacBody(m, d, jp, jr, body)
-            jac = np.vstack([jp[:, va], jr[:, va]])
-            jjt = jac @ jac.T + damping**2 * np.eye(6)
-            dq = jac.T @ np.linalg.solve(jjt, err)
+            jac[:3], jac[3:] = jp[:, va], jr[:, va]
             # Null space: drift toward mid-range, away from joint limits (the arm has 7 dof).
             toward = nullspace * (mid - d.qpos[qa]) / span
             if avoid is not None and it % AVOID_EVERY == 0:
@@ -367,11 +367,13 @@ class GraspChoice:
                     m, d, self.geoms[hand], va, avoid, AVOID_MARGIN, with_other=False
                 )
             toward = toward + push
-            dq += toward - jac.T @ np.linalg.solve(jjt, jac @ toward)
-            step = np.linalg.norm(dq)
-            if step > 0.2:  # rad: keep steps small so the linearisation holds
-                dq *= 0.2 / step
-            d.qpos[qa] = np.clip(d.qpos[qa] + dq, self._lo[hand], self._hi[hand])
+            rhs[:, 0], rhs[:, 1] = err, jac @ toward
+            sol = np.linalg.solve(jac @ jac.T + damp, rhs)
+            dq = jac.T @ (sol[:, 0] - sol[:, 1]) + toward
+            step2 = float(dq @ dq)
+            if step2 > 0.04:  # 0.2 rad: keep steps small so the linearisation holds
+                dq *= 0.2 / step2**0.5
+            d.qpos[qa] = np.minimum(np.maximum(d.qpos[qa] + dq, lo), hi)
         return d.qpos[qa].copy()
 
     def ik_miss(self, hand: str, pos: Vec, quat: Vec) -> float:

@@ -17,6 +17,7 @@ from artiplan.model import ArticulatedObject
 from artiplan.world.mjcf import HAND_NAMES
 from artiplan.world.rotations import Vec
 from artiplan.world.servo import ServoGains
+from artiplan.world.turning import Turn
 
 
 class Hands(ABC):
@@ -65,12 +66,18 @@ class Hands(ABC):
     def control(self, dt: float) -> None:  # noqa: B027 - optional hook
         """Called before every physics step of ``dt`` seconds (controllers, IK)."""
 
+    def after_step(self) -> None:  # noqa: B027 - optional hook
+        """Called after every physics step (e.g. to log contacts)."""
+
     def held(self, hand: str) -> str | None:
         """The link ``hand`` holds, or None."""
         return self._held[hand]
 
-    def assign(self, hold_link: str, rotate_link: str) -> tuple[str, str]:
-        """(hand that holds, hand that rotates); the default: left holds, right rotates."""
+    def assign(
+        self, hold_link: str, rotate_link: str, turn: Turn | None = None
+    ) -> tuple[str, str]:
+        """(hand that holds, hand that rotates) for a rotation ``turn`` of ``rotate_link``;
+        the default: left holds, right rotates (virtual hands collide with nothing)."""
         return self.names[0], self.names[1]
 
     def release_all(self) -> None:

@@ -34,6 +34,7 @@ from artiplan.world.rotations import (
     rotation_axis,
 )
 from artiplan.world.servo import Servo, ServoGains
+from artiplan.world.turning import DEFAULT_EXTENT_DEG, EXTRA_DEG, Turn
 
 
 @dataclass(frozen=True)
@@ -69,10 +70,12 @@ class Motion:
     hold_link: str = ""
     plane: str = ""
     direction: int = 0
+    limit_rad: float = math.inf
 
     def target(self, t: float) -> tuple[Vec, Vec]:
-        """Desired (position, quaternion) of the link's frame at time ``t``."""
-        q = quat_axis_angle(self.axis, self.speed_rad_s * (t - self.t0))
+        """Desired (position, quaternion) of the link's frame at time ``t`` (the turn stops at
+        ``limit_rad``)."""
+        q = quat_axis_angle(self.axis, min(self.speed_rad_s * (t - self.t0), self.limit_rad))
         return self.pivot, quat_mul(q, self.quat0)
 
 
@@ -108,6 +111,8 @@ class World:
         #: hand -> (link, fixed desired pose or None when the motion drives it, servo)
         self._goals: dict[str, tuple[str, tuple[Vec, Vec] | None, Servo]] = {}
         self._reference = self._estimate = conf.wrapped()
+        #: (degrees, why) when the last turn stops short of its planned extent (else None).
+        self.turn_limit: tuple[float, str] | None = None
         self.set_configuration(conf)
 
     # -- construction -------------------------------------------------------------------
@@ -183,6 +188,7 @@ class World:
                 self._servo_step(self.time + h, h)
             self.hands.control(h)
             mujoco.mj_step(self.model, self.data)
+            self.hands.after_step()
         if not np.all(np.isfinite(self.data.qpos)):
             raise FloatingPointError(f"physics diverged at t = {self.time:.3f} s")
 
@@ -200,6 +206,7 @@ class World:
         direction: int,
         speed_deg_s: float = 10.0,
         reference: Configuration | None = None,
+        extent_deg: float | None = None,
     ) -> None:
         """Hold ``hold_link`` and turn its neighbour ``rotate_link`` about their joint.
 
@@ -207,6 +214,10 @@ class World:
         representation nearest ``reference`` (the plan's prediction; default: the last one read).
         ``xy-axes`` turns about the world vertical; ``z-axis`` about the horizontal normal of
         the link's vertical plane. The links tip-ward of ``rotate_link`` are carried.
+        ``extent_deg``: how far the turn is meant to go (the hands choose grasps that can do
+        it; default :data:`artiplan.world.turning.DEFAULT_EXTENT_DEG`). Hands that find no
+        way to do it raise a ``RuntimeError`` (nothing is held then); hands that can do only
+        part of it set :attr:`turn_limit`, and the turn stops there.
         """
         k, j = self.obj.index(hold_link), self.obj.index(rotate_link)
         if j != k + 1:
@@ -214,7 +225,13 @@ class World:
         if direction not in (1, -1):
             raise ValueError("direction must be +1 (increase) or -1 (decrease)")
         self.stop(release=True)
-        hold_hand, rot_hand = self.hands.assign(hold_link, rotate_link)
+        conf = self.true_configuration(reference)
+        extent = DEFAULT_EXTENT_DEG if extent_deg is None else extent_deg + EXTRA_DEG
+        turn = Turn(j, direction * rotation_axis(plane, conf.theta[j - 1]),
+                    self.data.xpos[self._ids[j - 1]].copy(), extent)
+        hold_hand, rot_hand = self.hands.assign(hold_link, rotate_link, turn)
+        limit = getattr(self.hands, "turn_limit", None)
+        self.turn_limit = limit
         approach = getattr(self.hands, "approach", None)
         if approach is not None:  # arms that take time to reach (the world runs meanwhile)
             pairs = [(hold_hand, hold_link)] if k > 1 else []
@@ -238,6 +255,7 @@ class World:
             hold_link,
             plane,
             direction,
+            math.radians(limit[0]) if limit is not None else math.inf,
         )
 
     @property
