@@ -6,6 +6,8 @@ from __future__ import annotations
 import random
 from typing import Any
 
+import pytest
+
 from artiplan.encoding import EncodingOptions, make_goal
 from artiplan.encoding.suite import make_task, random_pair
 from artiplan.execution import LoopConfig, run_loop
@@ -56,17 +58,23 @@ def test_loop_replans_around_a_failed_grasp() -> None:
     assert log.success
 
 
-def test_a_start_is_dispatched_with_the_time_to_its_own_stop() -> None:
-    from artiplan.execution.dispatch import planned_duration
-    from artiplan.semantics import TimedAction
+def test_plan_steps_map_each_action_once_with_its_own_stop() -> None:
+    from artiplan.execution.dispatch import Observe, Rotate, Stop, Unknown, plan_steps
+    from artiplan.model import ArticulatedObject
+    from artiplan.semantics import Plan, TimedAction
 
-    start = TimedAction(1.44, "start-increase", ("L2", "L3", "z-axis"))
-    actions = [
-        start,
+    plan = Plan((
+        TimedAction(1.44, "start-increase", ("l2", "L3", "Z-AXIS")),
         TimedAction(5.0, "stop-increase", ("L1", "L2", "z-axis")),  # another pair's stop
         TimedAction(9.44, "stop-increase", ("l2", "l3", "z-axis")),  # its own (any case)
-        TimedAction(12.0, "stop-increase", ("L2", "L3", "z-axis")),
-    ]
-    assert planned_duration(actions, start) == 8.0
-    assert planned_duration(actions[:2], start) is None  # never stopped in the plan
-    assert planned_duration(actions, actions[1]) is None  # not a start
+        TimedAction(10.0, "start-decrease", ("L3", "L4", "xy-axes")),  # never stopped
+        TimedAction(12.0, "dance"),
+        TimedAction(13.0, "observe"),
+    ))
+    steps = plan_steps(plan, ArticulatedObject(4))
+    assert [type(s) for s in steps] == [Rotate, Stop, Stop, Rotate, Unknown, Observe]
+    first, last = steps[0], steps[3]
+    assert isinstance(first, Rotate) and isinstance(last, Rotate)
+    assert (first.hold, first.turn, first.plane, first.direction) == ("L2", "L3", "z-axis", 1)
+    assert first.duration == pytest.approx(8.0)
+    assert last.direction == -1 and last.duration is None

@@ -13,10 +13,10 @@ import pytest
 from artiplan.encoding import EncodingOptions
 from artiplan.encoding.suite import random_pair
 from artiplan.execution import RUN_LOG_SCHEMA, SCHEMA_RUN_LOG, LoopConfig, run_loop, schema_errors
-from artiplan.execution.dispatch import ActionFailed, dispatch
+from artiplan.execution.dispatch import ActionFailed, dispatch, plan_steps
 from artiplan.execution.runlog import write_schema
 from artiplan.model import ArticulatedObject
-from artiplan.semantics import TimedAction
+from artiplan.semantics import Plan, TimedAction
 
 
 @pytest.fixture(scope="module")
@@ -59,14 +59,16 @@ def test_dispatch_vocabulary() -> None:
     init, _ = random_pair(3, random.Random(2))
     world = make_world(obj, init, hands="virtual")
     pred = world.true_configuration()
-    assert dispatch(world, TimedAction(0.0, "observe"), (10.0, 10.0), pred) == "observe"
-    did = dispatch(world, TimedAction(0.0, "start-increase", ("l2", "l3", "Z-AXIS")),
-                   (10.0, 10.0), pred)
+
+    def step(name: str, *args: str):  # type: ignore[no-untyped-def]
+        return plan_steps(Plan((TimedAction(0.0, name, args),)), obj)[0]
+
+    assert dispatch(world, step("observe"), (10.0, 10.0), pred) == "observe"
+    did = dispatch(world, step("start-increase", "l2", "l3", "Z-AXIS"), (10.0, 10.0), pred)
     assert did.startswith("hold L2, rotate L3 on z-axis +10")
+    with pytest.raises(ActionFailed):  # not neighbours: the world refuses
+        dispatch(world, step("start-increase", "L1", "L3", "z-axis"), (10.0, 10.0), pred)
     with pytest.raises(ActionFailed):
-        dispatch(world, TimedAction(0.0, "start-increase", ("L1", "L3", "z-axis")),
-                 (10.0, 10.0), pred)  # not neighbours: the world refuses
-    with pytest.raises(ActionFailed):
-        dispatch(world, TimedAction(0.0, "dance"), (10.0, 10.0), pred)
-    assert dispatch(world, TimedAction(0.0, "stop-increase", ("L2", "L3", "z-axis")),
-                    (10.0, 10.0), pred) == "stop and release"
+        dispatch(world, step("dance"), (10.0, 10.0), pred)
+    assert dispatch(world, step("stop-increase", "L2", "L3", "z-axis"), (10.0, 10.0),
+                    pred) == "stop and release"

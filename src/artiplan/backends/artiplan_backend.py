@@ -11,7 +11,7 @@ import sys
 import tempfile
 from pathlib import Path
 
-from artiplan.backends.base import BackendResult, Planner, PlanStatus
+from artiplan.backends.base import BackendResult, Planner, PlanResult, PlanStatus
 from artiplan.backends.convert import plan_from_val
 from artiplan.backends.runner import TIMEOUT_MESSAGES, Limits, run_limited
 from artiplan.errors import ExitCode
@@ -45,6 +45,15 @@ class ArtiplanPlanner(Planner):
         if memory_limit is not None:
             cmd += ["--memory-limit", f"{memory_limit:g}"]
         return cmd
+
+    def plan(
+        self, domain: str, problem: str, *, time_limit: float | None = None,
+        memory_limit: float | None = None,
+    ) -> PlanResult:
+        """In-process (no start-up, no files): :func:`artiplan.search.api.plan`."""
+        from artiplan.search.api import plan
+
+        return plan(domain, problem, time_limit=time_limit, memory_limit=memory_limit)
 
     def solve(
         self,

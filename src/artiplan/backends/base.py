@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
-from artiplan.semantics.results import PlanStatus
+from artiplan.semantics.results import PlanResult, PlanStatus
 
 if TYPE_CHECKING:
     from artiplan.semantics.plan import Plan
@@ -77,3 +77,34 @@ class Planner(abc.ABC):
 
     def check_available(self) -> None:  # noqa: B027 - optional hook, most planners need nothing
         """Raise :class:`~artiplan.errors.ExternalToolError` if the planner cannot run here."""
+
+    def plan(
+        self, domain: str, problem: str, *, time_limit: float | None = None,
+        memory_limit: float | None = None,
+    ) -> PlanResult:
+        """Plan for PDDL+ text (what a closed loop needs): the plan, closed as VAL reads it,
+        with the validator's trajectory of it (the prediction to monitor against).
+
+        By default the text goes to :meth:`solve` through temporary files; a plan the
+        validator rejects is reported as ``ERROR`` with the reason.
+        """
+        import tempfile
+
+        from artiplan.backends.convert import close_at_end
+        from artiplan.pddl import load_task
+        from artiplan.semantics import validate
+
+        with tempfile.TemporaryDirectory(prefix="artiplan-plan-") as tmp:
+            d, p = Path(tmp) / "domain.pddl", Path(tmp) / "problem.pddl"
+            d.write_text(domain)
+            p.write_text(problem)
+            res = self.solve(d, p, time_limit=time_limit, memory_limit=memory_limit)
+        if res.status is not PlanStatus.SOLVED or res.plan is None:
+            return PlanResult(res.status, message=res.message)
+        task = load_task(domain, problem)
+        found = close_at_end(res.plan, task)
+        report = validate(task, found)
+        if not report.valid:
+            return PlanResult(PlanStatus.ERROR, message=f"{self.name}'s plan is invalid: "
+                              f"{report.reason}")
+        return PlanResult(PlanStatus.SOLVED, found, report.trajectory)

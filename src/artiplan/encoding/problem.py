@@ -12,8 +12,11 @@ from artiplan.model import ArticulatedObject, Configuration
 from artiplan.model.angles import wrap_deg
 
 
-def _init_facts(obj: ArticulatedObject, init: Configuration, options: EncodingOptions) -> list[str]:
-    facts = [f"(connected {a} {b})" for a, b in obj.joints]
+def _init_facts(obj: ArticulatedObject, init: Configuration, options: EncodingOptions,
+                reaching: bool = False,
+                blocked: frozenset[tuple[str, str]] = frozenset()) -> list[str]:
+    facts = ["(reaching)"] if reaching and options.has_reach else []
+    facts += [f"(connected {a} {b})" for a, b in obj.joints if (a, b) not in blocked]
     facts += [f"(affects {a} {b})" for a, b in obj.affects()]
     facts += [f"(free-to-move {lk})" for lk in obj.links]
     facts += [
@@ -104,6 +107,8 @@ def problem_pddl(
     seed: int = 0,
     name: str | None = None,
     goal: GoalSpec | None = None,
+    reaching: bool = False,
+    blocked: frozenset[tuple[str, str]] = frozenset(),
 ) -> str:
     """The PDDL+ problem text that takes ``obj`` from ``init`` to ``target``.
 
@@ -116,6 +121,11 @@ def problem_pddl(
         seed: Seed of the goal's random choice (threshold style's upper bound).
         name: Problem name (default ``p<n>``).
         goal: A ready goal, overriding ``goal_style``/``seed`` when given.
+        reaching: The hands are away from the object (with a reach time): the first grasp
+            waits ``reach-time`` too (re-planning after a release).
+        blocked: (hold link, rotated link) pairs the robot cannot grasp now: their
+            ``connected`` fact is left out (the only precondition that reads it is the
+            grasp's), so the plan moves the chain some other way.
 
     Returns:
         The problem as PDDL+ text, ending with a newline.
@@ -125,7 +135,7 @@ def problem_pddl(
     if goal is None:
         goal = make_goal(obj, target, goal_style, seed, planes=options.planes)
     name = name or f"p{obj.n_links}"
-    facts = "\n    ".join(_init_facts(obj, init, options))
+    facts = "\n    ".join(_init_facts(obj, init, options, reaching, blocked))
     return f"""(define (problem {name})
   (:domain {domain_name(options)})
   (:objects {" ".join(obj.links)} - link)

@@ -49,6 +49,8 @@ class LoopConfig:
         max_replans: At most this many re-plans a run.
         replan: Re-plan at all (False: execute the first plan open-loop).
         plan_time_limit: Wall-clock limit of one planner call [s].
+        planner: The planner the loop calls (``artiplan`` in-process; ``enhsp``, ``kairos``:
+            :func:`artiplan.backends.get_planner`).
         advance_latency: Let the world run on (hands released) for the measured planning
             latency before a new plan starts, instead of freezing simulated time while planning.
         settle_s: Simulated time the world runs before the first percept [s].
@@ -83,6 +85,7 @@ class LoopConfig:
     max_replans: int = 5
     replan: bool = True
     plan_time_limit: float = 60.0
+    planner: str = "artiplan"
     advance_latency: bool = False
     settle_s: float = 0.0
     interventions: tuple[Intervention, ...] = ()

@@ -15,22 +15,22 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable
-from contextlib import suppress
 from dataclasses import asdict, replace
 from typing import TYPE_CHECKING, Any, cast
 
+from artiplan.backends import get_planner
 from artiplan.encoding import domain_pddl, make_goal
 from artiplan.encoding.options import Model
 from artiplan.execution.config import Intervention, LoopConfig
-from artiplan.execution.dispatch import ActionFailed, dispatch, link_named, planned_duration
+from artiplan.execution.dispatch import ActionFailed, Rotate, Step, dispatch, plan_steps
 from artiplan.execution.monitor import Monitor, goal_errors
 from artiplan.execution.predict import Prediction
 from artiplan.execution.problem import build_problem, canonical
 from artiplan.execution.runlog import RunLog, conf_dict
 from artiplan.model import Configuration
-from artiplan.search.api import PlanStatus, plan
 from artiplan.semantics import Plan
 from artiplan.semantics.plan_io import format_plan
+from artiplan.semantics.results import PlanStatus
 
 if TYPE_CHECKING:
     from artiplan.world import World
@@ -80,6 +80,7 @@ class ClosedLoop:
         self.replans = 0
         #: (hold, rotate) pairs whose grasp just failed: the next plan does without them.
         self.blocked: frozenset[tuple[str, str]] = frozenset()
+        self.planner = get_planner(self.config.planner)
         #: Links carried by the vertical-plane rotation in progress (see Monitor.check).
         self.carried: frozenset[str] = frozenset()
         self.log = RunLog(
@@ -226,7 +227,8 @@ class ClosedLoop:
         for without in ((blocked, frozenset()) if blocked else (frozenset(),)):
             problem = build_problem(self.obj, start, self.target, self.encoding, self.goal,
                                     hands_away=self.lead > 0.0, blocked=without)
-            result = plan(self.domain, problem, time_limit=self.config.plan_time_limit)
+            result = self.planner.plan(self.domain, problem,
+                                       time_limit=self.config.plan_time_limit)
             if result.status is PlanStatus.SOLVED:
                 if without:
                     self.progress("planned without grasping " + ", ".join(
@@ -239,7 +241,7 @@ class ClosedLoop:
         """Dispatch the plan on the world, monitoring in between. Returns a re-plan reason, or
         None when the plan ran to its end."""
         plan_ = self.current_plan
-        actions = sorted(plan_.actions, key=lambda a: a.time)
+        actions = plan_steps(plan_, self.obj)  # mapped once: typed rotations, stops, observes
         span = max(plan_.makespan, plan_.end or 0.0)
         index, i = len(self.log.plans) - 1, 0
         # The world advances in physics steps (and not at all for less than half a step): a
@@ -291,31 +293,28 @@ class ClosedLoop:
         return (f"{verdict.worst_link} off the prediction by {verdict.worst_error:.1f} deg "
                 f"(threshold {verdict.threshold:g})")
 
-    def _due(self, action: Any, pred: Prediction) -> float:
-        """World time [s] to dispatch ``action``: a start ``lead`` early (its reach)."""
-        early = self.lead if action.name.lower().startswith("start-") else 0.0
-        return pred.t0 + action.time - early
+    def _due(self, step: Step, pred: Prediction) -> float:
+        """World time [s] to dispatch ``step``: a rotation ``lead`` early (its reach)."""
+        early = self.lead if isinstance(step, Rotate) else 0.0
+        return pred.t0 + step.action.time - early
 
-    def _dispatch(self, action: Any, pred: Prediction, index: int) -> str | None:
+    def _dispatch(self, step: Step, pred: Prediction, index: int) -> str | None:
         enc = self.encoding
         now = self.world.time
+        action = step.action
         planned = pred.t0 + action.time
-        duration = planned_duration(list(self.current_plan.actions), action)
         try:
-            did, ok = dispatch(self.world, action, (enc.speed_i, enc.speed_d),
-                               pred.at(max(now, planned)), duration), True
+            did, ok = dispatch(self.world, step, (enc.speed_i, enc.speed_d),
+                               pred.at(max(now, planned))), True
         except ActionFailed as exc:
             did, ok = str(exc), False
-            if action.name.lower().startswith("start-") and len(action.args) == 3:
-                with suppress(ActionFailed):  # an unknown link: nothing to block
-                    pair = (link_named(self.obj, action.args[0]),
-                            link_named(self.obj, action.args[1]))
-                    self.blocked = self.blocked | {pair}
+            if isinstance(step, Rotate):  # planned around at the next re-plan
+                self.blocked = self.blocked | {(step.hold, step.turn)}
         if ok and self.world.time > now:  # the arms approached: the rotation starts now
             shift = self.world.time - planned
             did += f" (reach {self.world.time - now:.2f} s, {shift:+.2f} s off the plan)"
             pred.t0 += shift
-        self.carried = _carried(self.obj.links, action) if ok else frozenset()
+        self.carried = _carried(self.obj.links, step) if ok else frozenset()
         self.log.happenings.append({"time": round(now, 4), "plan": index,
                                     "action": action.signature, "ok": ok, "did": did})
         self.progress(f"t={now:7.2f} s  {action.signature}: {did}")
@@ -348,15 +347,12 @@ class ClosedLoop:
         return ok
 
 
-def _carried(links: tuple[str, ...], action: Any) -> frozenset[str]:
-    """Links tip-ward of the rotated one while ``action`` runs a ``z-axis`` rotation (a
+def _carried(links: tuple[str, ...], step: Step) -> frozenset[str]:
+    """Links tip-ward of the rotated one while ``step`` runs a ``z-axis`` rotation (a
     horizontal rotation carries links rigidly, as the model says; a vertical one does not)."""
-    name, args = action.name.lower(), action.args
-    if not name.startswith("start-") or len(args) != 3 or args[2].lower() != "z-axis":
+    if not isinstance(step, Rotate) or step.plane != "z-axis":
         return frozenset()
-    names = [lk.lower() for lk in links]
-    turn = names.index(args[1].lower()) if args[1].lower() in names else len(names)
-    return frozenset(links[turn + 1 :])
+    return frozenset(links[links.index(step.turn) + 1:])
 
 
 def _settings(config: LoopConfig) -> dict[str, Any]:

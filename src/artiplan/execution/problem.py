@@ -32,16 +32,9 @@ def build_problem(
     """The PDDL+ problem from the perceived configuration (canonical covers) to ``goal``.
 
     ``hands_away`` (with a ``reach_time``): the hands are released and away from the object,
-    so the first grasp also waits ``reach-time`` (the problem starts ``(reaching)``; gravity
-    acts meanwhile), as after a release inside the plan.
-
-    ``blocked``: (hold link, rotated link) pairs the robot just failed to grasp; their
-    ``connected`` fact is left out, so the plan moves the chain some other way (the only
-    precondition that reads ``connected`` is the grasp's).
+    so the first grasp also waits ``reach-time`` (gravity acts meanwhile), as after a release
+    inside the plan. ``blocked``: (hold link, rotated link) pairs the robot just failed to
+    grasp, planned around (see :func:`artiplan.encoding.problem_pddl`).
     """
-    text = problem_pddl(obj, canonical(perceived), target, options, goal=goal, name="replan")
-    if hands_away and options.has_reach:
-        text = text.replace("(:init\n", "(:init\n    (reaching)\n", 1)
-    for hold, turn in sorted(blocked):
-        text = text.replace(f"    (connected {hold} {turn})\n", "", 1)
-    return text
+    return problem_pddl(obj, canonical(perceived), target, options, goal=goal, name="replan",
+                        reaching=hands_away, blocked=blocked)
