@@ -123,6 +123,15 @@ def dispatch(
         raise ActionFailed(step.reason)
     speed = speeds[0] if step.direction > 0 else speeds[1]
     extent = None if step.duration is None else speed * step.duration
+    return rotate(world, step, speed, predicted, extent)
+
+
+def rotate(
+    world: World, step: Rotate, speed: float, predicted: Configuration, extent: float | None
+) -> str:
+    """Grasp and start turning as ``step`` says, at ``speed`` [deg/s], for ``extent`` [deg]
+    (None: open-ended); the line :func:`dispatch` returns. Also the re-grasp that resumes a
+    turn the arms had to stop short (:mod:`artiplan.execution.loop`)."""
     try:
         world.hold_and_rotate(step.hold, step.turn, step.plane, step.direction, speed,
                               reference=predicted, extent_deg=extent)

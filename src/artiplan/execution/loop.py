@@ -22,10 +22,11 @@ from artiplan.backends import get_planner
 from artiplan.encoding import domain_pddl, make_goal
 from artiplan.encoding.options import Model
 from artiplan.execution.config import Intervention, LoopConfig
-from artiplan.execution.dispatch import ActionFailed, Rotate, Step, dispatch, plan_steps
+from artiplan.execution.dispatch import ActionFailed, Rotate, Step, dispatch, plan_steps, rotate
 from artiplan.execution.monitor import Monitor, goal_errors
 from artiplan.execution.predict import Prediction
 from artiplan.execution.problem import build_problem, canonical
+from artiplan.execution.regrasp import Resume, lost_deg, resume_after
 from artiplan.execution.runlog import RunLog, conf_dict
 from artiplan.model import Configuration
 from artiplan.semantics import Plan
@@ -83,6 +84,8 @@ class ClosedLoop:
         self.planner = get_planner(self.config.planner)
         #: Links carried by the vertical-plane rotation in progress (see Monitor.check).
         self.carried: frozenset[str] = frozenset()
+        #: The rotation in progress when the arms stop it short (execution.regrasp).
+        self.resume: Resume | None = None
         self.log = RunLog(
             settings={**_settings(config), "hands": world.hands.kind,
                       "physics": asdict(world.config.physics)},
@@ -248,16 +251,27 @@ class ClosedLoop:
         # time is reached when it is within half a step.
         tol = 0.5 * float(self.world.model.opt.timestep) + _EPS
         next_mon = self.world.time
+        self.resume = None
         while True:
             end = pred.t0 + span  # the prediction shifts when a grasp is late
             t_act = self._due(actions[i], pred) if i < len(actions) else end
             t_int = self.pending[0].time if self.pending else float("inf")
-            t_next = min(t_act, next_mon, t_int)
+            t_res = self.resume.due if self.resume is not None else float("inf")
+            t_next = min(t_act, next_mon, t_int, t_res)
             self.world.run_until(t_next)
             now = self.world.time
             if t_int <= now + tol:
                 self._intervene(self.pending.pop(0), index)
                 next_mon = now  # look again at once
+                continue
+            if t_res <= now + tol and (i >= len(actions) or t_act > now + tol):
+                reason = self._observe(pred, index, "happening")
+                if reason is not None and self._may_replan():
+                    return reason
+                failure = self._regrasp(pred, index)
+                if failure is not None and self._may_replan():
+                    return failure
+                next_mon = self.world.time
                 continue
             happening = i < len(actions) and t_act <= now + tol
             reason = self._observe(pred, index, "happening" if happening else "monitor")
@@ -315,10 +329,49 @@ class ClosedLoop:
             did += f" (reach {self.world.time - now:.2f} s, {shift:+.2f} s off the plan)"
             pred.t0 += shift
         self.carried = _carried(self.obj.links, step) if ok else frozenset()
+        if isinstance(step, Rotate) or not ok:  # a new turn, a stop or a failure
+            self.resume = None
+        if ok and isinstance(step, Rotate):
+            self.resume = resume_after(self.world, step, self._speed(step), pred.t0)
         self.log.happenings.append({"time": round(now, 4), "plan": index,
                                     "action": action.signature, "ok": ok, "did": did})
         self.progress(f"t={now:7.2f} s  {action.signature}: {did}")
         self.observer(self.world, "action", action.signature)
+        return None if ok else f"action failed: {did}"
+
+    def _speed(self, step: Rotate) -> float:
+        """The rotation speed [deg/s] of ``step`` (the encoding's speed-i or speed-d)."""
+        return self.encoding.speed_i if step.direction > 0 else self.encoding.speed_d
+
+    def _regrasp(self, pred: Prediction, index: int) -> str | None:
+        """Resume the rotation the arms stopped short (:mod:`artiplan.execution.regrasp`):
+        re-grasp for the rest of its planned turn, shift the prediction by the re-grasp's
+        duration and by what the link lost meanwhile. A reason when that fails."""
+        r, self.resume = self.resume, None
+        assert r is not None
+        now = self.world.time
+        remaining = r.remaining(pred.t0, now)
+        step = r.step
+        label = f"{step.action.signature} resumed"
+        try:
+            did, ok = rotate(self.world, step, r.speed, pred.at(now), remaining), True
+        except ActionFailed as exc:
+            did, ok = str(exc), False
+            self.blocked = self.blocked | {(step.hold, step.turn)}
+        if ok:
+            waited = self.world.time - now
+            pred.t0 += waited
+            predicted = pred.at(self.world.time)
+            seen = self.world.perceive(reference=predicted).configuration
+            lost = lost_deg(step, predicted, seen, self.obj.index(step.turn))
+            pred.t0 += lost / r.speed
+            did = (f"re-grasp for the last {remaining:.0f} deg: {did} ({waited:.2f} s, "
+                   f"{lost:.1f} deg lost meanwhile)")
+            self.resume = resume_after(self.world, step, r.speed, pred.t0, r.done + 1)
+        self.log.happenings.append({"time": round(now, 4), "plan": index, "action": label,
+                                    "ok": ok, "did": did})
+        self.progress(f"t={now:7.2f} s  {label}: {did}")
+        self.observer(self.world, "action", label)
         return None if ok else f"action failed: {did}"
 
     def _intervene(self, iv: Intervention, index: int) -> None:

@@ -259,6 +259,15 @@ class World:
         )
 
     @property
+    def turn_ends(self) -> float | None:
+        """Simulated time [s] at which the rotation in progress reaches :attr:`turn_limit`
+        (its command stops there), or None when it is not limited (or nothing turns)."""
+        m = self._motion
+        if m is None or not math.isfinite(m.limit_rad):
+            return None
+        return m.t0 + m.limit_rad / m.speed_rad_s
+
+    @property
     def motion(self) -> tuple[str, str, str, int] | None:
         """The rotation in progress as (hold link, rotated link, plane, direction), or None."""
         m = self._motion

@@ -1,0 +1,76 @@
+"""Resuming a turn the arms had to stop short: re-grasp and turn on (execution, not planning).
+
+A planned rotation can be longer than one grasp pair can turn without a collision or without
+losing the link (Baxter's arms: the fixture, the torso, a neighbouring link, the rotating arm's
+reach; :attr:`artiplan.world.scene.World.turn_limit`). The world then stops the turn where its
+collision-free part ends. Rather than wait for the monitor to see the link stop and re-plan
+(one of the loop's few re-plans per stretch of a turn), the loop re-grasps when the turn's
+command stops (:attr:`World.turn_ends`): both hands let go, the arms choose a pair for the rest
+of the turn from where the chain is now, approach, and the rotation goes on. The plan's clock
+waits meanwhile: the prediction is shifted by the re-grasp's duration, and by the part of the
+turn the link lost while it was released (gravity), so the plan's stop still ends the turn
+where the plan said. A re-grasp that finds no way is an action failure (the loop re-plans
+around the pair, as when a start is refused).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from artiplan.execution.dispatch import Rotate
+from artiplan.model import Configuration
+from artiplan.model.angles import signed_delta_deg
+
+if TYPE_CHECKING:
+    from artiplan.world import World
+
+#: A rotation is resumed at most this many times (each re-grasp costs an approach, 2-5 s
+#: simulated); after that the turn stays stopped and the monitor has the say.
+MAX_REGRASPS = 3
+#: ... and only when at least this much [deg] of the planned turn remains (a planning
+#: window is 1.5 deg wide either way).
+MIN_REMAINING_DEG = 1.0
+#: The prediction waits at most this much [deg of the turn] for what the link lost while it
+#: was released; more than that is left to the monitor (a push, a fall, a wrong cover).
+MAX_LOST_DEG = 15.0
+
+
+@dataclass(frozen=True)
+class Resume:
+    """A rotation ``step`` at ``speed`` [deg/s] whose command stops at world time ``due`` [s]
+    before the plan's stop; ``done`` re-grasps so far."""
+
+    step: Rotate
+    speed: float
+    due: float
+    done: int = 0
+
+    def remaining(self, t0: float, now: float) -> float:
+        """Degrees of the planned turn left at world time ``now`` [s] with the plan started
+        at ``t0`` [s] (its stop at ``t0`` + start + duration)."""
+        assert self.step.duration is not None
+        stop = t0 + self.step.action.time + self.step.duration
+        return self.speed * (stop - now)
+
+
+def resume_after(world: World, step: Rotate, speed: float, t0: float, done: int = 0
+                 ) -> Resume | None:
+    """The resume a rotation just dispatched (or resumed ``done`` times) needs: None when its
+    turn is not limited, the plan never stops it, MAX_REGRASPS are used up, or less than
+    MIN_REMAINING_DEG of it would be left at the limit."""
+    due = getattr(world, "turn_ends", None)
+    if due is None or step.duration is None or done >= MAX_REGRASPS:
+        return None
+    out = Resume(step, speed, float(due), done)
+    return out if out.remaining(t0, out.due) >= MIN_REMAINING_DEG else None
+
+
+def lost_deg(step: Rotate, predicted: Configuration, perceived: Configuration,
+             index: int) -> float:
+    """How far [deg, >= 0, at most MAX_LOST_DEG] the rotated link (1-based ``index``) is
+    behind ``predicted`` along ``step``'s turn in ``perceived`` (covers chosen near the
+    prediction)."""
+    behind = step.direction * signed_delta_deg(perceived.angle(index, step.plane),
+                                               predicted.angle(index, step.plane))
+    return min(max(behind, 0.0), MAX_LOST_DEG)
