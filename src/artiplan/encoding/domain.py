@@ -70,6 +70,10 @@ def _header(options: EncodingOptions) -> str:
     if options.has_reach:
         functions += ["(reach-time)", "(reach-clock)"]
         predicates.append("(reaching)")
+    if options.refusals:
+        predicates += ["(refused-increase ?l1 - link ?l2 - link ?p - plane)",
+                       "(refused-decrease ?l1 - link ?l2 - link ?p - plane)",
+                       "(unlocked ?l - link)"]
     if options.carry == "projected":
         functions.append("(carry ?l1 - link ?l2 - link ?p - plane)")
         if options.azimuth_plane:
@@ -105,6 +109,13 @@ def _robot(options: EncodingOptions, sign: str) -> str:
     timed = options.has_reach
     ready = "\n      (not (reaching))" if timed else ""
     reach = "\n      (reaching)\n      (assign (reach-clock) 0)" if timed else ""
+    if options.refusals:
+        # A refused start waits until its rotated link (and so the pair) has moved: a turn
+        # of that link or of one base-ward of it has stopped (a turn further out does not
+        # move the pair).
+        ready += f"\n      (or (unlocked ?l2) (not (refused-{sign} ?l1 ?l2 ?p)))"
+        reach += ("\n      (unlocked ?l2)\n      (forall (?l - link)\n        "
+                  "(when (affects ?l2 ?l) (unlocked ?l)))")
     carried = _carried(options, speed, "?p")
     turning = f"({flag} ?l1 {options.gravity_plane})\n      (affects ?l1 ?l2)"
     azimuth = _azimuth(options, f"propagate-{sign}-azimuth", turning, sign, speed)

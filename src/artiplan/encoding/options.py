@@ -43,6 +43,10 @@ class EncodingOptions:
             that plane; a link across it barely changes gamma). The factors are problem
             constants ``(carry ?k ?j ?p)`` computed from the initial thetas (1 on other planes:
             a turn about the vertical is exact).
+        refusals: Add what the closed loop needs to plan around rotations the robot has
+            just refused (``(refused-increase ?l1 ?l2 ?p)``, ``(refused-decrease ...)``: no
+            such start until a turn of ?l2 or of a link base-ward of it has stopped, which
+            makes ``(unlocked ?l2)``). Off by default: the suite's domains do not have it.
     """
 
     model: Model = "ng"
@@ -54,6 +58,7 @@ class EncodingOptions:
     gravity_plane: str = VERTICAL_PLANE
     reach_time: float | None = None
     carry: Carry = "rigid"
+    refusals: bool = False
 
     def __post_init__(self) -> None:
         if self.model not in MODELS:

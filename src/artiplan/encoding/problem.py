@@ -14,9 +14,11 @@ from artiplan.model.angles import wrap_deg
 
 def _init_facts(obj: ArticulatedObject, init: Configuration, options: EncodingOptions,
                 reaching: bool = False,
-                blocked: frozenset[tuple[str, str]] = frozenset()) -> list[str]:
+                blocked: frozenset[tuple[str, str]] = frozenset(),
+                refused: frozenset[tuple[str, str, str, str]] = frozenset()) -> list[str]:
     facts = ["(reaching)"] if reaching and options.has_reach else []
     facts += [f"(connected {a} {b})" for a, b in obj.joints if (a, b) not in blocked]
+    facts += [f"(refused-{sign} {a} {b} {p})" for a, b, p, sign in sorted(refused)]
     facts += [f"(affects {a} {b})" for a, b in obj.affects()]
     facts += [f"(free-to-move {lk})" for lk in obj.links]
     facts += [
@@ -109,6 +111,7 @@ def problem_pddl(
     goal: GoalSpec | None = None,
     reaching: bool = False,
     blocked: frozenset[tuple[str, str]] = frozenset(),
+    refused: frozenset[tuple[str, str, str, str]] = frozenset(),
 ) -> str:
     """The PDDL+ problem text that takes ``obj`` from ``init`` to ``target``.
 
@@ -126,6 +129,9 @@ def problem_pddl(
         blocked: (hold link, rotated link) pairs the robot cannot grasp now: their
             ``connected`` fact is left out (the only precondition that reads it is the
             grasp's), so the plan moves the chain some other way.
+        refused: (hold link, rotated link, plane, ``increase``/``decrease``) rotations the
+            robot has just refused to start: the plan does not start them before some
+            rotation has stopped (needs ``options.refusals``).
 
     Returns:
         The problem as PDDL+ text, ending with a newline.
@@ -134,8 +140,13 @@ def problem_pddl(
         raise ValueError(f"object has {obj.n_links} links, initial configuration {init.n_links}")
     if goal is None:
         goal = make_goal(obj, target, goal_style, seed, planes=options.planes)
+    if refused and not options.refusals:
+        raise ValueError("refused rotations need EncodingOptions(refusals=True)")
+    bad = [r for r in refused if r[3] not in ("increase", "decrease")]
+    if bad:
+        raise ValueError(f"a refused rotation's sign is increase or decrease, not {bad[0][3]!r}")
     name = name or f"p{obj.n_links}"
-    facts = "\n    ".join(_init_facts(obj, init, options, reaching, blocked))
+    facts = "\n    ".join(_init_facts(obj, init, options, reaching, blocked, refused))
     return f"""(define (problem {name})
   (:domain {domain_name(options)})
   (:objects {" ".join(obj.links)} - link)
