@@ -79,6 +79,10 @@ def main() -> None:
             row = {"schema": "artiplan.execution-bench/1", "task": k, "success": log.success,
                    "replans": len(log.replans), "interventions": len(log.interventions),
                    "reasons": [r["reason"] for r in log.replans],
+                   "refusals": len(log.refusals),
+                   "regrasps": sum(h["ok"] for h in log.happenings
+                                   if h["action"].endswith("resumed")),
+                   "collisions": len(log.collisions),
                    "latency_wall_s": [r["latency_wall_s"] for r in log.replans],
                    "sim_s": round(world.time, 3), "wall_s": round(time.perf_counter() - t0, 3),
                    "max_goal_error": log.final.get("max_goal_error"),
@@ -91,7 +95,9 @@ def main() -> None:
     lat = [x for r in rows for x in r["latency_wall_s"]]
     print(f"success {sum(r['success'] for r in rows)}/{len(rows)}, re-plans mean "
           f"{statistics.mean(r['replans'] for r in rows):.2f} max "
-          f"{max(r['replans'] for r in rows)}, interventions applied "
+          f"{max(r['replans'] for r in rows)}, refusals planned around "
+          f"{sum(r['refusals'] for r in rows)}, turns resumed by a re-grasp "
+          f"{sum(r['regrasps'] for r in rows)}, interventions applied "
           f"{sum(r['interventions'] for r in rows)}, re-plan latency median "
           f"{statistics.median(lat) if lat else float('nan'):.3f} s max "
           f"{max(lat) if lat else float('nan'):.3f} s, calibrated speed-g {enc.speed_g} "

@@ -1,5 +1,6 @@
-"""A grasp that fails (e.g. out of the arm's reach) is not planned again at once: the next
-problem leaves that pair's ``connected`` fact out."""
+"""Rotations the robot cannot do: a blocked pair's ``connected`` fact is left out of the
+problem; a rotation the world refuses is not the next plan's first one (until the chain has
+moved), and planning again after a refusal that moved nothing is no re-plan."""
 
 from __future__ import annotations
 
@@ -28,34 +29,62 @@ def test_blocked_pair_is_left_out_of_the_problem() -> None:
     assert "(connected L1 L2)" in blocked and "(connected L3 L4)" in blocked
 
 
-def test_loop_replans_around_a_failed_grasp() -> None:
+def test_refused_rotations_wait_until_the_chain_has_moved() -> None:
+    from artiplan.backends import get_planner
+    from artiplan.encoding import domain_pddl
+
+    obj = ArticulatedObject(4)
+    task = make_task(4, 1, seed=7)
+    enc = EncodingOptions("ucm", speed_g=0.948, reach_time=3.178, refusals=True)
+    goal = make_goal(obj, task.target, "window", 1, planes=enc.planes, tolerance=1.5)
+    planner = get_planner("artiplan")
+    first: list[str] = []
+    refused: frozenset[tuple[str, str, str, str]] = frozenset()
+    for _ in range(2):
+        problem = build_problem(obj, task.initial, task.target, enc, goal, hands_away=True,
+                                refused=refused)
+        result = planner.plan(domain_pddl(obj, enc), problem, time_limit=60)
+        assert result.plan is not None
+        a = result.plan.actions[0]
+        first.append(a.signature)
+        refused = refused | {(a.args[0], a.args[1], a.args[2], a.name.split("-")[1])}
+    # The refused start is not the first one any more; it stays allowed later (not blocked).
+    assert first[0] != first[1]
+    assert "(or (unlocked ?l2) (not (refused-increase ?l1 ?l2 ?p)))" in domain_pddl(obj, enc)
+    with pytest.raises(ValueError, match="refusals=True"):
+        build_problem(obj, task.initial, task.target, EncodingOptions("ucm"), goal,
+                      refused=frozenset({("L2", "L3", "z-axis", "increase")}))
+
+
+def test_loop_plans_around_a_refused_rotation_without_spending_a_replan() -> None:
     from artiplan.world import make_world
 
     obj = ArticulatedObject(3)
     init, target = random_pair(3, random.Random(6))
     world = make_world(obj, init, hands="virtual", seed=6)
-    failed: list[tuple[str, str]] = []
+    failed: list[tuple[str, str, str, int]] = []
     real = world.hold_and_rotate
 
-    def first_grasp_fails(hold: str, turn: str, *args: Any, **kwargs: Any) -> None:
-        if not failed:  # the robot cannot take the first grasp it is sent to, once
-            failed.append((hold, turn))
-            raise RuntimeError(f"cannot reach {turn} (injected)")
-        real(hold, turn, *args, **kwargs)
+    def first_grasp_fails(hold: str, turn: str, plane: str, direction: int, *args: Any,
+                          **kwargs: Any) -> None:
+        if not failed:  # the robot refuses the first rotation it is sent to, once
+            failed.append((hold, turn, plane, direction))
+            raise RuntimeError(f"no collision-free grasps for {turn} (injected)")
+        real(hold, turn, plane, direction, *args, **kwargs)
 
     world.hold_and_rotate = first_grasp_fails  # type: ignore[method-assign]
     lines: list[str] = []
     log = run_loop(world, target, LoopConfig(EncodingOptions("ng")), progress=lines.append,
                    seed=6)
-    assert failed and log.replans
-    assert log.replans[0]["reason"].startswith("action failed")
-    hold, turn = failed[0]
-    # The re-plan does without the failed grasp (moving L3 by turning L2 instead), and the
-    # goal is still reached.
-    assert any(f"without grasping {hold}+{turn}" in line for line in lines)
+    assert failed and log.refusals and not log.replans
+    assert log.refusals[0]["reason"].startswith("action failed")
+    hold, turn, plane, direction = failed[0]
+    sign = "increase" if direction > 0 else "decrease"
+    assert any(f"without starting with (start-{sign} {hold} {turn} {plane})" in line
+               for line in lines)
     second = [a["action"] for a in log.plans[1]["actions"]]
-    assert second and not any(f" {hold} {turn} " in a for a in second)
-    assert log.success
+    assert second and second[0] != f"(start-{sign} {hold} {turn} {plane})"
+    assert log.final["replans"] == 0 and log.success
 
 
 def test_plan_steps_map_each_action_once_with_its_own_stop() -> None:

@@ -26,7 +26,7 @@ from artiplan.execution.dispatch import ActionFailed, Rotate, Step, dispatch, pl
 from artiplan.execution.monitor import Monitor, goal_errors
 from artiplan.execution.predict import Prediction
 from artiplan.execution.problem import build_problem, canonical
-from artiplan.execution.regrasp import Resume, lost_deg, resume_after
+from artiplan.execution.regrasp import Resume, behind_deg, resume_after
 from artiplan.execution.runlog import RunLog, conf_dict
 from artiplan.model import Configuration
 from artiplan.semantics import Plan
@@ -39,6 +39,9 @@ if TYPE_CHECKING:
 Progress = Callable[[str], None]
 #: Wall time [s] after which a long execution prints a line even when nothing happened.
 HEARTBEAT_S = 10.0
+#: At most this many plans a run whose first rotation the world refuses before anything of
+#: them moved are planned again without spending the re-plan budget (see ClosedLoop.run).
+MAX_REFUSALS = 12
 #: Called with (world, kind, label) after every percept (kind ``monitor``), action (``action``,
 #: its signature), intervention and the final check; e.g. to record camera frames.
 Observer = Callable[["World", str, str], None]
@@ -79,8 +82,16 @@ class ClosedLoop:
         self.lead = (enc.reach_time or 0.0) if approaching and config.compensate_approach else 0.0
         self.pending = sorted(config.interventions, key=lambda i: i.time)
         self.replans = 0
-        #: (hold, rotate) pairs whose grasp just failed: the next plan does without them.
-        self.blocked: frozenset[tuple[str, str]] = frozenset()
+        #: Rotations (hold, rotate, plane, increase|decrease) the world refused since their
+        #: pair last moved: the next plans do not start them before it has (a turn of the
+        #: rotated link or of one base-ward of it; EncodingOptions.refusals).
+        self.refused: frozenset[tuple[str, str, str, str]] = frozenset()
+        #: Whether the plan being executed has moved anything yet; whether it was found only
+        #: by ignoring the refusals; plans re-made after a refusal, free of the budget.
+        self._moved = False
+        self._relaxed = False
+        self._free = False
+        self.refusals = 0
         self.planner = get_planner(self.config.planner)
         #: Links carried by the vertical-plane rotation in progress (see Monitor.check).
         self.carried: frozenset[str] = frozenset()
@@ -103,10 +114,12 @@ class ClosedLoop:
         motions0 = len(getattr(getattr(self.world.hands, "checker", None), "stats", []))
         self.world.run_until(self.world.time + self.config.settle_s)
         reason = "initial"
+        counted = False
         while True:
-            prediction = self._plan(reason)
+            prediction = self._plan(reason, counted)
             if prediction is None:
                 break
+            self._free = False
             outcome = self._execute(prediction)
             if outcome is None:  # plan finished: check the goal at the final happening
                 if self._final_check() or not self._may_replan():
@@ -117,6 +130,13 @@ class ClosedLoop:
                 reason = outcome
             self.world.stop(release=True)
             self.carried = frozenset()
+            # A plan whose first rotation the world refused before anything moved was never
+            # executed: planning again without it is part of planning (the motion planner
+            # answering the task planner), not a re-plan after a failed execution.
+            counted = not self._free
+            if not counted:
+                self.refusals += 1
+                continue
             self.replans += 1
             if self.replans >= self.config.fallback_after:
                 self._fall_back()
@@ -184,16 +204,20 @@ class ClosedLoop:
         conf, _ = self.kb.latest_configuration(None)
         return conf
 
-    def _plan(self, reason: str) -> Prediction | None:
-        """Perceive, build the problem, plan; log it. None when no plan was found."""
+    def _plan(self, reason: str, counted: bool = True) -> Prediction | None:
+        """Perceive, build the problem, plan; log it (a re-plan when ``counted``, else a plan
+        again after a refusal). None when no plan was found."""
         start = canonical(self._perceive_for_planning())
         t = time.perf_counter()
         result = self._solve(start)
         latency = time.perf_counter() - t
         index = len(self.log.plans)
-        if index:
-            self.log.replans.append({"time": round(self.world.time, 4), "reason": reason,
-                                     "latency_wall_s": round(latency, 4)})
+        entry = {"time": round(self.world.time, 4), "reason": reason,
+                 "latency_wall_s": round(latency, 4)}
+        if index and counted:
+            self.log.replans.append(entry)
+        elif index:
+            self.log.refusals.append(entry)
         if self.config.advance_latency:
             self.world.run_until(self.world.time + latency)
         t0 = self.world.time
@@ -224,19 +248,23 @@ class ClosedLoop:
         return Prediction(self.obj, result.trajectory, t0, start)
 
     def _solve(self, start: Configuration) -> Any:
-        """Plan from ``start``; without the blocked grasps first (a grasp that just failed
-        would fail again from nearly the same state), with them if that finds no plan."""
-        blocked, self.blocked = self.blocked, frozenset()
-        for without in ((blocked, frozenset()) if blocked else (frozenset(),)):
-            problem = build_problem(self.obj, start, self.target, self.encoding, self.goal,
-                                    hands_away=self.lead > 0.0, blocked=without)
-            result = self.planner.plan(self.domain, problem,
-                                       time_limit=self.config.plan_time_limit)
+        """Plan from ``start``; not starting with a rotation the world has refused since the
+        chain last moved (it would be refused again from nearly the same state), ignoring
+        those refusals if that finds no plan."""
+        refused = self.refused
+        self._relaxed = False
+        for avoid in ((refused, frozenset()) if refused else (frozenset(),)):
+            enc = replace(self.encoding, refusals=True) if avoid else self.encoding
+            domain = domain_pddl(self.obj, enc) if avoid else self.domain
+            problem = build_problem(self.obj, start, self.target, enc, self.goal,
+                                    hands_away=self.lead > 0.0, refused=avoid)
+            result = self.planner.plan(domain, problem, time_limit=self.config.plan_time_limit)
             if result.status is PlanStatus.SOLVED:
-                if without:
-                    self.progress("planned without grasping " + ", ".join(
-                        f"{h}+{r}" for h, r in sorted(without)) + " (that grasp just failed)")
+                if avoid:
+                    self.progress("planned without starting with " + ", ".join(
+                        _rotation(r) for r in sorted(avoid)) + " (refused from here)")
                 break
+        self._relaxed = bool(refused) and not avoid
         return result
 
     # -- execution ------------------------------------------------------------------------
@@ -252,6 +280,7 @@ class ClosedLoop:
         tol = 0.5 * float(self.world.model.opt.timestep) + _EPS
         next_mon = self.world.time
         self.resume = None
+        self._moved = False
         while True:
             end = pred.t0 + span  # the prediction shifts when a grasp is late
             t_act = self._due(actions[i], pred) if i < len(actions) else end
@@ -281,7 +310,7 @@ class ClosedLoop:
                 while i < len(actions) and self._due(actions[i], pred) <= now + tol:
                     failure = self._dispatch(actions[i], pred, index)
                     i += 1
-                    if failure is not None and self._may_replan():
+                    if failure is not None and (self._free or self._may_replan()):
                         return failure
             if i >= len(actions) and now >= pred.t0 + span - tol:
                 return None
@@ -323,11 +352,17 @@ class ClosedLoop:
         except ActionFailed as exc:
             did, ok = str(exc), False
             if isinstance(step, Rotate):  # planned around at the next re-plan
-                self.blocked = self.blocked | {(step.hold, step.turn)}
+                self._refuse(step)
+        if ok and isinstance(step, Rotate):  # the pairs from the turned link on move
+            j = self.obj.index(step.turn)
+            self._moved = True
+            self.refused = frozenset(r for r in self.refused if self.obj.index(r[1]) < j)
         if ok and self.world.time > now:  # the arms approached: the rotation starts now
             shift = self.world.time - planned
             did += f" (reach {self.world.time - now:.2f} s, {shift:+.2f} s off the plan)"
             pred.t0 += shift
+        if ok and isinstance(step, Rotate):
+            did += f" ({self._align(step, pred, self._speed(step)):+.1f} deg behind at the grasp)"
         self.carried = _carried(self.obj.links, step) if ok else frozenset()
         if isinstance(step, Rotate) or not ok:  # a new turn, a stop or a failure
             self.resume = None
@@ -338,6 +373,23 @@ class ClosedLoop:
         self.progress(f"t={now:7.2f} s  {action.signature}: {did}")
         self.observer(self.world, "action", action.signature)
         return None if ok else f"action failed: {did}"
+
+    def _refuse(self, step: Rotate) -> None:
+        """The world refused ``step``: remember it for the next plans; free of the re-plan
+        budget if nothing of this plan has moved yet (see :meth:`run`)."""
+        self.refused = self.refused | {_refusal(step)}
+        self._free = (not self._moved and not self._relaxed and self.refusals < MAX_REFUSALS
+                      and self.world.time < self.config.max_time)
+
+    def _align(self, step: Rotate, pred: Prediction, speed: float) -> float:
+        """Shift the plan's clock so the turn ``step`` starting now ends where the plan says
+        on its plane (:mod:`artiplan.execution.regrasp`); returns how far [deg] the link was
+        behind the prediction (negative: ahead)."""
+        predicted = pred.at(self.world.time)
+        seen = self.world.perceive(reference=predicted).configuration
+        behind = behind_deg(step, predicted, seen, self.obj.index(step.turn))
+        pred.t0 += behind / speed
+        return behind
 
     def _speed(self, step: Rotate) -> float:
         """The rotation speed [deg/s] of ``step`` (the encoding's speed-i or speed-d)."""
@@ -357,16 +409,13 @@ class ClosedLoop:
             did, ok = rotate(self.world, step, r.speed, pred.at(now), remaining), True
         except ActionFailed as exc:
             did, ok = str(exc), False
-            self.blocked = self.blocked | {(step.hold, step.turn)}
+            self._refuse(step)
         if ok:
             waited = self.world.time - now
             pred.t0 += waited
-            predicted = pred.at(self.world.time)
-            seen = self.world.perceive(reference=predicted).configuration
-            lost = lost_deg(step, predicted, seen, self.obj.index(step.turn))
-            pred.t0 += lost / r.speed
+            lost = self._align(step, pred, r.speed)
             did = (f"re-grasp for the last {remaining:.0f} deg: {did} ({waited:.2f} s, "
-                   f"{lost:.1f} deg lost meanwhile)")
+                   f"{lost:+.1f} deg behind after it)")
             self.resume = resume_after(self.world, step, r.speed, pred.t0, r.done + 1)
         self.log.happenings.append({"time": round(now, 4), "plan": index, "action": label,
                                     "ok": ok, "did": did})
@@ -398,6 +447,16 @@ class ClosedLoop:
                       + ", ".join(f"{k} {v:.1f} deg" for k, v in errs.items()))
         self.observer(self.world, "final", "goal reached" if ok else "goal not reached")
         return ok
+
+
+def _refusal(step: Rotate) -> tuple[str, str, str, str]:
+    """``step`` as a refused rotation (see :func:`artiplan.encoding.problem_pddl`)."""
+    return (step.hold, step.turn, step.plane, "increase" if step.direction > 0 else "decrease")
+
+
+def _rotation(refused: tuple[str, str, str, str]) -> str:
+    hold, turn, plane, sign = refused
+    return f"({'start-' + sign} {hold} {turn} {plane})"
 
 
 def _carried(links: tuple[str, ...], step: Step) -> frozenset[str]:

@@ -28,13 +28,15 @@ def build_problem(
     obj: ArticulatedObject, perceived: Configuration, target: Configuration,
     options: EncodingOptions, goal: GoalSpec, hands_away: bool = False,
     blocked: frozenset[tuple[str, str]] = frozenset(),
+    refused: frozenset[tuple[str, str, str, str]] = frozenset(),
 ) -> str:
     """The PDDL+ problem from the perceived configuration (canonical covers) to ``goal``.
 
     ``hands_away`` (with a ``reach_time``): the hands are released and away from the object,
     so the first grasp also waits ``reach-time`` (gravity acts meanwhile), as after a release
     inside the plan. ``blocked``: (hold link, rotated link) pairs the robot just failed to
-    grasp, planned around (see :func:`artiplan.encoding.problem_pddl`).
+    grasp, planned around (see :func:`artiplan.encoding.problem_pddl`); ``refused``:
+    rotations the robot has just refused, not started before the chain has moved.
     """
     return problem_pddl(obj, canonical(perceived), target, options, goal=goal, name="replan",
-                        reaching=hands_away, blocked=blocked)
+                        reaching=hands_away, blocked=blocked, refused=refused)

@@ -1,4 +1,12 @@
-"""Resuming a turn the arms had to stop short: re-grasp and turn on (execution, not planning).
+"""How the loop carries out a planned turn: aligned on the link when it starts, resumed by a
+re-grasp when the arms had to stop it short (execution, not planning).
+
+Every turn ends where the plan says on its plane: when the grasp is made (the hands were away,
+gravity acted, the arms' approach took its time), the rotated link is perceived and the plan's
+clock shifted by how far it is behind (or ahead of) the prediction along the turn, divided by
+the turn's speed, so the plan's stop comes that much later (earlier). The monitor then compares
+with a prediction that starts where the link is (the other plane's offset is the next turn's
+to absorb, as it is aligned in its turn).
 
 A planned rotation can be longer than one grasp pair can turn without a collision or without
 losing the link (Baxter's arms: the fixture, the torso, a neighbouring link, the rotating arm's
@@ -15,11 +23,12 @@ around the pair, as when a start is refused).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from artiplan.execution.dispatch import Rotate
-from artiplan.model import Configuration
+from artiplan.model import HORIZONTAL_PLANE, VERTICAL_PLANE, Configuration
 from artiplan.model.angles import signed_delta_deg
 
 if TYPE_CHECKING:
@@ -34,6 +43,9 @@ MIN_REMAINING_DEG = 1.0
 #: The prediction waits at most this much [deg of the turn] for what the link lost while it
 #: was released; more than that is left to the monitor (a push, a fall, a wrong cover).
 MAX_LOST_DEG = 15.0
+#: A link this near the vertical [deg] has no reliable azimuth to align a turn about the
+#: vertical on.
+POLE_DEG = 10.0
 
 
 @dataclass(frozen=True)
@@ -66,11 +78,16 @@ def resume_after(world: World, step: Rotate, speed: float, t0: float, done: int 
     return out if out.remaining(t0, out.due) >= MIN_REMAINING_DEG else None
 
 
-def lost_deg(step: Rotate, predicted: Configuration, perceived: Configuration,
-             index: int) -> float:
-    """How far [deg, >= 0, at most MAX_LOST_DEG] the rotated link (1-based ``index``) is
-    behind ``predicted`` along ``step``'s turn in ``perceived`` (covers chosen near the
-    prediction)."""
+def behind_deg(step: Rotate, predicted: Configuration, perceived: Configuration,
+               index: int) -> float:
+    """How far [deg] the rotated link (1-based ``index``) is behind ``predicted`` along
+    ``step``'s turn in ``perceived`` (covers chosen near the prediction): negative when it
+    is ahead, within +-MAX_LOST_DEG; 0 for a turn about the vertical of a link within
+    POLE_DEG of it (its azimuth is not observable there)."""
+    if step.plane == HORIZONTAL_PLANE:
+        g = perceived.angle(index, VERTICAL_PLANE)
+        if abs(math.sin(math.radians(g))) < math.sin(math.radians(POLE_DEG)):
+            return 0.0
     behind = step.direction * signed_delta_deg(perceived.angle(index, step.plane),
                                                predicted.angle(index, step.plane))
-    return min(max(behind, 0.0), MAX_LOST_DEG)
+    return min(max(behind, -MAX_LOST_DEG), MAX_LOST_DEG)

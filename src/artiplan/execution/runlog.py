@@ -79,6 +79,7 @@ RUN_LOG_SCHEMA: dict[str, Any] = {
                            "action": {"type": "string"}, "ok": {"type": "boolean"},
                            "did": {"type": "string"}}}},
         "replans": {"type": "array", "items": _REPLAN},
+        "refusals": {"type": "array", "items": _REPLAN},
         "interventions": {"type": "array", "items": {
             "type": "object", "required": ["time", "link", "plane", "delta_deg"]}},
         "final": {"type": "object", "required": ["time", "perceived", "goal_errors", "success"],
@@ -132,6 +133,9 @@ class RunLog:
     collisions: list[dict[str, Any]] = field(default_factory=list)
     #: Planned arm motions (Baxter): wall time [s], dimension (7/14), waypoints, success.
     motions: list[dict[str, Any]] = field(default_factory=list)
+    #: Plans made again because the world refused the last plan's first rotation before
+    #: anything moved (not re-plans: no plan was executed): time, reason, latency.
+    refusals: list[dict[str, Any]] = field(default_factory=list)
 
     def to_dict(self) -> dict[str, Any]:
         return {"schema": SCHEMA_RUN_LOG, **self.__dict__}

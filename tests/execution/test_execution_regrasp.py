@@ -1,0 +1,63 @@
+"""A turn the arms stop short is resumed by a re-grasp (the plan's clock waits, no re-plan);
+every turn is aligned on the perceived link when it starts."""
+
+from __future__ import annotations
+
+import random
+from typing import Any
+
+from artiplan.encoding import EncodingOptions
+from artiplan.encoding.suite import random_pair
+from artiplan.execution import LoopConfig, run_loop
+from artiplan.execution.dispatch import Rotate
+from artiplan.execution.regrasp import MAX_LOST_DEG, Resume, behind_deg
+from artiplan.model import ArticulatedObject, Configuration
+from artiplan.semantics import TimedAction
+
+
+def test_loop_resumes_a_turn_stopped_short_and_reaches_the_goal() -> None:
+    from artiplan.world import make_world
+
+    obj = ArticulatedObject(3)
+    init, target = random_pair(3, random.Random(6))
+    world = make_world(obj, init, hands="virtual", seed=6)
+    real = world.hold_and_rotate
+    calls: list[float | None] = []
+
+    def first_turn_stops_early(*args: Any, **kwargs: Any) -> None:
+        # The first grasp pair can turn only 10 deg (as Baxter's arms near the fixture).
+        world.hands.turn_limit = (10.0, "injected") if not calls else None  # type: ignore[attr-defined]
+        calls.append(kwargs.get("extent_deg"))
+        real(*args, **kwargs)
+
+    world.hold_and_rotate = first_turn_stops_early  # type: ignore[method-assign]
+    log = run_loop(world, target, LoopConfig(EncodingOptions("ng")), seed=6)
+    resumed = [h for h in log.happenings if h["action"].endswith("resumed")]
+    assert resumed and resumed[0]["ok"] and resumed[0]["did"].startswith("re-grasp")
+    first = calls[0]
+    assert first is not None and first > 11.0
+    # The re-grasp asks for the rest of the planned turn, not the whole of it again.
+    assert calls[1] is not None and abs(calls[1] - (first - 10.0)) < 1.0
+    assert not log.replans and log.success
+
+
+def test_resume_remaining_and_lost() -> None:
+    step = Rotate(TimedAction(2.0, "start-increase", ("L2", "L3", "z-axis")), "L2", "L3",
+                  "z-axis", 1, 8.0)
+    r = Resume(step, 10.0, due=5.0)
+    assert r.remaining(t0=1.0, now=5.0) == 60.0  # its stop at 1 + 2 + 8 = 11 s
+    pred = Configuration((0.0, 0.0, 0.0), (0.0, 90.0, 120.0))
+    behind = Configuration((0.0, 0.0, 0.0), (0.0, 90.0, 117.0))
+    ahead = Configuration((0.0, 0.0, 0.0), (0.0, 90.0, 124.0))
+    far = Configuration((0.0, 0.0, 0.0), (0.0, 90.0, 60.0))
+    assert abs(behind_deg(step, pred, behind, 3) - 3.0) < 1e-9
+    assert abs(behind_deg(step, pred, ahead, 3) + 4.0) < 1e-9
+    assert behind_deg(step, pred, far, 3) == MAX_LOST_DEG
+    # About the vertical, a link near the pole has no azimuth to align on.
+    spin = Rotate(step.action, "L2", "L3", "xy-axes", 1, 8.0)
+    pole = Configuration((0.0, 0.0, 30.0), (0.0, 90.0, 5.0))
+    near = Configuration((0.0, 0.0, 20.0), (0.0, 90.0, 5.0))
+    assert behind_deg(spin, pole, near, 3) == 0.0
+    level = Configuration((0.0, 0.0, 30.0), (0.0, 90.0, 90.0))
+    assert abs(behind_deg(spin, level, Configuration((0.0, 0.0, 20.0), (0.0, 90.0, 90.0)), 3)
+               - 10.0) < 1e-9
