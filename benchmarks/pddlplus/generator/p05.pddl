@@ -1,0 +1,12 @@
+(define (problem generator-05)
+  (:domain generator)
+  (:objects gen - generator t1 t2 t3 t4 t5 - tank)
+  (:init
+    (= (fuel gen) 34) (= (capacity gen) 35)
+    (= (gen-duration) 221) (= (refuel-rate) 2)
+    (= (tank-fuel t1) 20) (available t1)
+    (= (tank-fuel t2) 42) (available t2)
+    (= (tank-fuel t3) 56) (available t3)
+    (= (tank-fuel t4) 46) (available t4)
+    (= (tank-fuel t5) 24) (available t5))
+  (:goal (and (generator-ran))))

@@ -1,0 +1,13 @@
+(define (problem generator-06)
+  (:domain generator)
+  (:objects gen - generator t1 t2 t3 t4 t5 t6 - tank)
+  (:init
+    (= (fuel gen) 40) (= (capacity gen) 41)
+    (= (gen-duration) 279) (= (refuel-rate) 2)
+    (= (tank-fuel t1) 34) (available t1)
+    (= (tank-fuel t2) 34) (available t2)
+    (= (tank-fuel t3) 22) (available t3)
+    (= (tank-fuel t4) 46) (available t4)
+    (= (tank-fuel t5) 46) (available t5)
+    (= (tank-fuel t6) 58) (available t6))
+  (:goal (and (generator-ran))))
