@@ -1,25 +1,35 @@
 """The generator families: durative (PDDL 2.1 level 3-4), linear PDDL+, Torricelli (nonlinear).
 
-One generator must run for ``gen-duration`` seconds, burning 1 fuel unit per second; its tank
-holds at most ``capacity``; it starts full, so the fuel of the n tanks can only be poured in while
-it runs, one tank at a time, each at a moment when the tank's contents fit. The final margin is
-smaller than any tank: every tank is needed. It starts one unit below capacity (VAL reads the
-overflow event's ``fuel > capacity`` as ``fuel - capacity > -0.0001``: an initial state at
-capacity would fire it, which VAL forbids in the initial state).
+One generator must run for ``gen-duration`` seconds, burning 1 fuel unit per second; its own tank
+holds at most ``capacity`` and starts nearly full, so the fuel of the n tanks can only be poured
+in while it runs, one tank at a time. The fuel left at the end (MARGIN) is less than any tank
+holds: every tank must be emptied. In the larger instances the capacity is smaller than a tank:
+a tank must be poured in several partial pours (a refuel shorter than its duration bound, or a
+``stop-refuel`` action), each started when the level is low and stopped before it overflows.
 
-Reference plans start each refuel as soon as the whole tank fits under ``capacity - 1``.
+The generator starts one unit below capacity: VAL reads the overflow event's ``fuel > capacity``
+as ``fuel - capacity > -0.0001``, so an initial state at capacity would fire it, which VAL forbids
+in the initial state.
+
+Reference plans: pour when the level is low (or as soon as a whole tank fits), stop one unit below
+capacity; the Torricelli pours are solved in closed form (the level is quadratic in time).
 """
 
 from __future__ import annotations
 
+import math
 import random
+from dataclasses import dataclass
 
 from gen.common import GAP, Family, Instance, Step, num, plan_text
 
-#: Number of tanks per instance (sizes 1..10).
-TANKS = (1, 2, 3, 4, 5, 6, 8, 10, 12, 15)
+#: (tanks, small capacity?) per instance, sizes 1..10: small capacities force partial pours.
+SIZES = ((1, False), (2, False), (3, False), (4, False), (2, True), (3, True), (4, True),
+         (6, True), (8, True), (10, True))
 #: Fuel left when the generator stops: less than any tank holds.
 MARGIN = 1
+#: The level at which a partial pour starts, and the room left under capacity when it stops.
+LOW, HEADROOM = 2.0, 1.0
 
 DURATIVE = """(define (domain generator)
   (:requirements :typing :fluents :durative-actions :duration-inequalities :continuous-effects
@@ -35,7 +45,7 @@ DURATIVE = """(define (domain generator)
     :condition (and (over all (>= (fuel ?g) 0)))
     :effect (and (decrease (fuel ?g) (* #t 1))
                  (at end (generator-ran))))
-  ;; pour a tank in, at most until it is empty, never above capacity, one tank at a time
+  ;; pour (part of) a tank: at most until it is empty, never above capacity, one at a time
   (:durative-action refuel
     :parameters (?g - generator ?t - tank)
     :duration (and (>= ?duration 0) (<= ?duration (/ (tank-fuel ?t) (refuel-rate))))
@@ -43,7 +53,7 @@ DURATIVE = """(define (domain generator)
                     (over all (<= (fuel ?g) (capacity ?g)))
                     (over all (>= (tank-fuel ?t) 0)))
     :effect (and (at start (refueling ?g)) (at start (not (available ?t)))
-                 (at end (not (refueling ?g)))
+                 (at end (not (refueling ?g))) (at end (available ?t))
                  (increase (fuel ?g) (* #t (refuel-rate)))
                  (decrease (tank-fuel ?t) (* #t (refuel-rate)))))
 )
@@ -78,6 +88,10 @@ _PPLUS = """(define (domain {name})
     :parameters (?g - generator ?t - tank)
     :precondition (and (available ?t) (not (busy ?g)))
     :effect (and (not (available ?t)) (busy ?g) (refueling ?g ?t)))
+  (:action stop-refuel
+    :parameters (?g - generator ?t - tank)
+    :precondition (and (refueling ?g ?t))
+    :effect (and (not (refueling ?g ?t)) (not (busy ?g)) (available ?t)))
   ;; {comment}
   (:process refuel
     :parameters (?g - generator ?t - tank)
@@ -97,11 +111,11 @@ _PPLUS = """(define (domain {name})
 
 LINEAR = _PPLUS.format(
     name="generator-pplus", tank="tank-fuel", funcs=" (refuel-rate)",
-    comment="a tank pours at a constant rate until it is empty",
+    comment="a tank pours at a constant rate until it is empty or the pour is stopped",
     rate="(refuel-rate)", tank_rate="(refuel-rate)", empty="0")
 TORRICELLI = _PPLUS.format(
     name="generator-torricelli", tank="tank-fuel", funcs=" (flow ?t - tank) (reserve)",
-    comment="Torricelli's law: the outflow is flow * sqrt(level), until the reserve is reached",
+    comment="Torricelli's law: the outflow is flow * sqrt(level), down to the reserve",
     rate="(* (flow ?t) (^ (tank-fuel ?t) 0.5))", tank_rate="(* (flow ?t) (^ (tank-fuel ?t) 0.5))",
     empty="(reserve)")
 #: VAL twin of TORRICELLI: the state holds r = sqrt(level), which falls linearly (r' = -flow/2),
@@ -112,91 +126,156 @@ TORRICELLI_TWIN = _PPLUS.format(
     rate="(* (flow ?t) (tank-root ?t))", tank_rate="(* 0.5 (flow ?t))", empty="(reserve-root)")
 
 
-def _objects(n: int) -> tuple[str, list[str]]:
-    tanks = [f"t{i}" for i in range(1, n + 1)]
-    return f"gen - generator {' '.join(tanks)} - tank", tanks
+@dataclass(frozen=True)
+class Pour:
+    """Tank ``tank`` (1-based) pours from ``start`` [s] for ``length`` [s]; ``empties`` if the
+    pour ends because the tank reached empty (or its reserve)."""
+
+    tank: int
+    start: float
+    length: float
+    empties: bool
+
+
+def linear_pours(cap: int, amounts: list[int], rate: float = 2.0) -> tuple[list[Pour], float]:
+    """Pours for the linear generator (net +1/s while pouring at rate 2); and the final level.
+
+    A pour starts as soon as it fits under ``cap - HEADROOM`` (at the latest when the level is
+    LOW) and lasts until the tank is empty or the level reaches ``cap - HEADROOM``.
+    """
+    t, level = 0.0, float(cap - 1)
+    pours: list[Pour] = []
+    for i, amount in enumerate(amounts, start=1):
+        left = float(amount)
+        while left > 1e-9:
+            length = min(left / rate, cap - HEADROOM - LOW)
+            wait = max(0.0, level - (cap - HEADROOM - length))
+            if pours and t + wait < pours[-1].start + pours[-1].length + GAP:
+                wait += GAP
+            t += wait
+            level -= wait
+            left -= rate * length
+            pours.append(Pour(i, t, length, left <= 1e-9))
+            t += length
+            level += (rate - 1) * length
+    return pours, level
+
+
+def _tor_level(level0: float, root0: float, flow: float, t: float) -> float:
+    """Generator fuel ``t`` s into a Torricelli pour: burn 1/s, inflow root0^2 - root(t)^2."""
+    root = root0 - flow * t / 2
+    return level0 - t + root0 ** 2 - root ** 2
+
+
+def _tor_hits(level0: float, root0: float, flow: float, target: float) -> float | None:
+    """The first time > 0 the pour's level reaches ``target`` (a quadratic), or None."""
+    # level(t) = level0 - t + root0^2 - (root0 - flow t/2)^2 = level0 + (flow root0 - 1) t - flow^2 t^2/4
+    a, b, c = -flow * flow / 4, flow * root0 - 1, level0 - target
+    disc = b * b - 4 * a * c
+    if disc < 0:
+        return None
+    roots = sorted(((-b + s * math.sqrt(disc)) / (2 * a)) for s in (1, -1))
+    later = [r for r in roots if r > 1e-9]
+    return later[0] if later else None
+
+
+def torricelli_pours(cap: int, roots: list[int], flows: list[float]) -> tuple[list[Pour], float]:
+    """Pours for the Torricelli generator (reserve = 1, i.e. root 1); and the final level."""
+    t, level = 0.0, float(cap - 1)
+    pours: list[Pour] = []
+    for i, (root, flow) in enumerate(zip(roots, flows), start=1):
+        while root > 1 + 1e-9:
+            to_reserve = 2 * (root - 1) / flow
+            # start at the level that keeps the pour above LOW and, if it runs to the reserve,
+            # under cap - HEADROOM; else as low as LOW and stop at cap - HEADROOM
+            peak_t = min(max((flow * root - 1) * 2 / flow ** 2, 0.0), to_reserve)
+            rise = _tor_level(0.0, root, flow, peak_t)
+            fall = min(0.0, _tor_level(0.0, root, flow, to_reserve))
+            start_level = min(level, cap - HEADROOM - rise) if rise <= cap - HEADROOM - LOW \
+                else min(level, LOW)
+            start_level = max(start_level, LOW - fall)
+            wait = max(0.0, level - start_level)
+            if pours and t + wait < pours[-1].start + pours[-1].length + GAP:
+                wait += GAP
+            t += wait
+            level -= wait
+            hit = _tor_hits(level, root, flow, cap - HEADROOM)
+            # a stop within 0.05 s of the reserve would race the tank-empty event: let it empty
+            # (the level then ends within 0.05 s of flow of cap - HEADROOM, still under cap)
+            empties = hit is None or hit >= to_reserve - 0.05
+            length = to_reserve if empties else hit
+            new_root = root - flow * length / 2
+            low_point = min(level, _tor_level(level, root, flow, length))  # concave: ends
+            assert low_point >= LOW / 2, f"tank t{i} would run the generator dry"
+            level = _tor_level(level, root, flow, length)
+            pours.append(Pour(i, t, length, empties))
+            root = 1.0 if pours[-1].empties else new_root
+            t += length
+    return pours, level
+
+
+def _objects(n: int) -> str:
+    return f"gen - generator {' '.join(f't{i}' for i in range(1, n + 1))} - tank"
 
 
 def _problem(name: str, domain: str, n: int, init: list[str]) -> str:
-    objects, _ = _objects(n)
     body = "\n    ".join(init)
-    return (f"(define (problem {name})\n  (:domain {domain})\n  (:objects {objects})\n"
+    return (f"(define (problem {name})\n  (:domain {domain})\n  (:objects {_objects(n)})\n"
             f"  (:init\n    {body})\n  (:goal (and (generator-ran))))\n")
 
 
-def _linear_schedule(cap: int, durations: list[int]) -> list[float]:
-    """Refuel start times: level cap - 1 - t; tank i (net +1/s for ``durations[i]`` s) starts
-    when it fits under cap - 1."""
-    starts, t = [], 0.0
-    level = float(cap - 1)
-    for x in durations:
-        wait = max(0.0, level - (cap - 1 - x))
-        t += wait
-        starts.append(t)
-        level = cap - 1.0 if wait > 0 else level + x
-        t += x
-    return starts
+def _pplus_steps(pours: list[Pour], duration: float) -> list[Step]:
+    steps = [Step(0.0, "start-generator gen")]
+    for p in pours:
+        steps.append(Step(p.start, f"start-refuel gen t{p.tank}"))
+        if not p.empties:
+            steps.append(Step(p.start + p.length, f"stop-refuel gen t{p.tank}"))
+    return [*steps, Step(duration + GAP, "stop-generator gen")]
 
 
 def _build_linear(kind: str) -> list[Instance]:
     rng = random.Random(21)
     out = []
-    for size, n in enumerate(TANKS, start=1):
-        xs = [rng.randint(10, 30) for _ in range(n)]  # refuel durations [s] at rate 2
-        cap = max(xs) + rng.randint(5, 15)
-        duration = cap - 1 + 2 * sum(xs) - MARGIN
-        starts = _linear_schedule(cap, xs)
+    for size, (n, small) in enumerate(SIZES, start=1):
+        amounts = [2 * rng.randint(10, 30) for _ in range(n)]  # pour times 10..30 s at rate 2
+        cap = rng.randint(10, 16) if small else max(amounts) // 2 + rng.randint(5, 15)
+        duration = cap - 1 + sum(amounts) - MARGIN
+        pours, _ = linear_pours(cap, amounts)
+        end = pours[-1].start + pours[-1].length
+        assert end + GAP < duration
         init = ["(= (fuel gen) %d) (= (capacity gen) %d)" % (cap - 1, cap),
                 f"(= (gen-duration) {duration}) (= (refuel-rate) 2)"]
-        init += [f"(= (tank-fuel t{i}) {2 * x}) (available t{i})" for i, x in enumerate(xs, 1)]
-        params = {"tanks": n, "capacity": cap, "gen_duration": duration,
-                  "tank_fuel": [2 * x for x in xs]}
+        init += [f"(= (tank-fuel t{i}) {x}) (available t{i})" for i, x in enumerate(amounts, 1)]
+        params = {"tanks": n, "capacity": cap, "gen_duration": duration, "tank_fuel": amounts,
+                  "pours": len(pours)}
         if kind == "durative":
             name = f"generator-{size:02d}"
             problem = _problem(name, "generator", n, init)
             steps = [Step(0.0, "generate gen", float(duration))]
-            steps += [Step(s, f"refuel gen t{i}", float(x)) for i, (s, x) in
-                      enumerate(zip(starts, xs), 1)]
+            steps += [Step(p.start, f"refuel gen t{p.tank}", p.length) for p in pours]
         else:
             name = f"generator-pplus-{size:02d}"
             init += ["(idle gen) (= (gen-time gen) 0)"]
             problem = _problem(name, "generator-pplus", n, init)
-            steps = [Step(0.0, "start-generator gen")]
-            steps += [Step(s + GAP, f"start-refuel gen t{i}") for i, s in enumerate(starts, 1)]
-            steps.append(Step(duration + GAP, "stop-generator gen"))
-        header = f"reference plan (generator): {n} tanks, each poured when it fits under capacity - 1"
+            steps = _pplus_steps(pours, duration)
+        header = (f"reference plan (generator): {n} tanks in {len(pours)} pours, each started "
+                  f"when it fits and stopped {HEADROOM:g} under capacity")
         out.append(Instance(size=size, problem=problem, plan=plan_text(steps, header),
                             params=params))
     return out
 
 
-def _torricelli_level(level0: float, root0: float, flow: float, t: float) -> float:
-    """Generator fuel t s into a pour: burn 1/s, inflow = root0^2 - (root0 - flow t / 2)^2."""
-    root = root0 - flow * t / 2
-    return level0 - t + root0 ** 2 - root ** 2
-
-
 def _build_torricelli() -> list[Instance]:
     rng = random.Random(23)
     out = []
-    for size, n in enumerate(TANKS, start=1):
+    for size, (n, small) in enumerate(SIZES, start=1):
         roots = [rng.randint(5, 8) for _ in range(n)]  # sqrt of the tank's contents
         flows = [round(rng.uniform(0.5, 2.0), 2) for _ in range(n)]
         delivered = [r * r - 1 for r in roots]  # down to the reserve 1 (= root 1)
-        cap = max(delivered) + rng.randint(5, 15)
+        cap = rng.randint(16, 22) if small else max(delivered) + rng.randint(5, 15)
         duration = cap - 1 + sum(delivered) - MARGIN
-        t, level, starts = 0.0, float(cap - 1), []
-        for root, flow, amount in zip(roots, flows, delivered):
-            wait = max(0.0, level - (cap - 1 - amount))
-            t += wait + GAP
-            level -= wait + GAP
-            starts.append(t)
-            pour = 2 * (root - 1) / flow
-            peak = max(_torricelli_level(level, root, flow, s * pour / 200) for s in range(201))
-            assert peak <= cap - 1 + 1e-9 and level - pour + amount >= 0
-            level = _torricelli_level(level, root, flow, pour)
-            t += pour
-        assert t + GAP < duration, "every pour must end before the generator stops"
+        pours, _ = torricelli_pours(cap, roots, flows)
+        assert pours[-1].start + pours[-1].length + GAP < duration
         base = ["(= (fuel gen) %d) (= (capacity gen) %d)" % (cap - 1, cap),
                 f"(= (gen-duration) {duration})", "(idle gen) (= (gen-time gen) 0)"]
         tanks = [f"(= (flow t{i}) {num(f)}) (available t{i})" for i, f in enumerate(flows, 1)]
@@ -205,16 +284,14 @@ def _build_torricelli() -> list[Instance]:
         twin = base + ["(= (reserve-root) 1)"] + tanks + [
             f"(= (tank-root t{i}) {r})" for i, r in enumerate(roots, 1)]
         name = f"generator-torricelli-{size:02d}"
-        steps = [Step(0.0, "start-generator gen")]
-        steps += [Step(s, f"start-refuel gen t{i}") for i, s in enumerate(starts, 1)]
-        steps.append(Step(duration + GAP, "stop-generator gen"))
-        header = f"reference plan (generator): {n} tanks, each poured when it fits under capacity - 1"
+        header = (f"reference plan (generator): {n} tanks in {len(pours)} pours "
+                  "(closed-form Torricelli levels)")
         out.append(Instance(
             size=size, problem=_problem(name, "generator-torricelli", n, real),
-            plan=plan_text(steps, header), plan_check="val-twin",
+            plan=plan_text(_pplus_steps(pours, duration), header), plan_check="val-twin",
             val_problem=_problem(name, "generator-torricelli-val", n, twin),
             params={"tanks": n, "capacity": cap, "gen_duration": duration,
-                    "tank_fuel": [r * r for r in roots], "flow": flows},
+                    "tank_fuel": [r * r for r in roots], "flow": flows, "pours": len(pours)},
         ))
     return out
 
@@ -224,22 +301,23 @@ FAMILIES = [
         name="generator",
         summary="durative actions (PDDL 2.1 level 3-4): fixed-duration generate with a #t "
                 "continuous effect, refuel with an inequality duration (<= tank / rate), "
-                "over all conditions, required concurrency; grows the number of tanks",
+                "over all conditions, required concurrency; grows the tanks, then shrinks the "
+                "capacity so that tanks need several partial pours (durations inside the bound)",
         features=("durative-actions", "duration-inequalities", "continuous-effects",
                   "required-concurrency"),
         domain=DURATIVE, build=lambda: _build_linear("durative"),
     ),
     Family(
         name="generator_pplus",
-        summary="the same generator as linear PDDL+ (processes, events for empty tank, "
-                "running dry and overflow); grows the number of tanks",
+        summary="the same generator as linear PDDL+ (processes; events for an empty tank, "
+                "running dry and overflow; stop-refuel for partial pours)",
         features=("processes", "events", "linear"),
         domain=LINEAR, build=lambda: _build_linear("pplus"),
     ),
     Family(
         name="torricelli",
         summary="nonlinear generator: tanks drain by Torricelli's law, flow * (^ level 0.5), "
-                "until a reserve; grows the number of tanks",
+                "down to a reserve; partial pours stop at a level reached along a quadratic",
         features=("processes", "events", "nonlinear", "pow"),
         domain=TORRICELLI, build=_build_torricelli, val_reads=False,
         val_domain=TORRICELLI_TWIN,

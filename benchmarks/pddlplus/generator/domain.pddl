@@ -12,7 +12,7 @@
     :condition (and (over all (>= (fuel ?g) 0)))
     :effect (and (decrease (fuel ?g) (* #t 1))
                  (at end (generator-ran))))
-  ;; pour a tank in, at most until it is empty, never above capacity, one tank at a time
+  ;; pour (part of) a tank: at most until it is empty, never above capacity, one at a time
   (:durative-action refuel
     :parameters (?g - generator ?t - tank)
     :duration (and (>= ?duration 0) (<= ?duration (/ (tank-fuel ?t) (refuel-rate))))
@@ -20,7 +20,7 @@
                     (over all (<= (fuel ?g) (capacity ?g)))
                     (over all (>= (tank-fuel ?t) 0)))
     :effect (and (at start (refueling ?g)) (at start (not (available ?t)))
-                 (at end (not (refueling ?g)))
+                 (at end (not (refueling ?g))) (at end (available ?t))
                  (increase (fuel ?g) (* #t (refuel-rate)))
                  (decrease (tank-fuel ?t) (* #t (refuel-rate)))))
 )

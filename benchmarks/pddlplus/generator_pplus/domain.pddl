@@ -27,7 +27,11 @@
     :parameters (?g - generator ?t - tank)
     :precondition (and (available ?t) (not (busy ?g)))
     :effect (and (not (available ?t)) (busy ?g) (refueling ?g ?t)))
-  ;; a tank pours at a constant rate until it is empty
+  (:action stop-refuel
+    :parameters (?g - generator ?t - tank)
+    :precondition (and (refueling ?g ?t))
+    :effect (and (not (refueling ?g ?t)) (not (busy ?g)) (available ?t)))
+  ;; a tank pours at a constant rate until it is empty or the pour is stopped
   (:process refuel
     :parameters (?g - generator ?t - tank)
     :precondition (and (refueling ?g ?t))

@@ -27,7 +27,11 @@
     :parameters (?g - generator ?t - tank)
     :precondition (and (available ?t) (not (busy ?g)))
     :effect (and (not (available ?t)) (busy ?g) (refueling ?g ?t)))
-  ;; Torricelli's law: the outflow is flow * sqrt(level), until the reserve is reached
+  (:action stop-refuel
+    :parameters (?g - generator ?t - tank)
+    :precondition (and (refueling ?g ?t))
+    :effect (and (not (refueling ?g ?t)) (not (busy ?g)) (available ?t)))
+  ;; Torricelli's law: the outflow is flow * sqrt(level), down to the reserve
   (:process refuel
     :parameters (?g - generator ?t - tank)
     :precondition (and (refueling ?g ?t))

@@ -27,6 +27,10 @@
     :parameters (?g - generator ?t - tank)
     :precondition (and (available ?t) (not (busy ?g)))
     :effect (and (not (available ?t)) (busy ?g) (refueling ?g ?t)))
+  (:action stop-refuel
+    :parameters (?g - generator ?t - tank)
+    :precondition (and (refueling ?g ?t))
+    :effect (and (not (refueling ?g ?t)) (not (busy ?g)) (available ?t)))
   ;; VAL twin: tank-root = sqrt(level) falls at flow/2; outflow flow * tank-root
   (:process refuel
     :parameters (?g - generator ?t - tank)
