@@ -5,7 +5,8 @@ Usage (from the repository root):
     .venv/bin/python benchmarks/pddlplus/check_val.py [--only FAMILY,...] [--out FILE]
 
 Writes ``benchmarks/pddlplus/results/val_check.jsonl`` (one row per instance) and prints a
-summary per family. A reference plan is checked on the real files where VAL reads them, else on
+summary per family. ``--negatives`` instead checks that VAL *rejects* broken variants of a few
+reference plans (one per VAL-checked family): the twins must catch what the real models forbid. A reference plan is checked on the real files where VAL reads them, else on
 the VAL twin (``FAMILY/val/``); families without either are reported as not checked by VAL.
 """
 
@@ -13,7 +14,10 @@ from __future__ import annotations
 
 import argparse
 import json
+import re
 import sys
+import tempfile
+from collections.abc import Callable
 from collections import defaultdict
 from pathlib import Path
 
@@ -53,12 +57,101 @@ def check(entry: dict[str, object]) -> dict[str, object]:
     return row
 
 
+Lines = list[str]
+
+
+def _timed(line: str) -> tuple[float, str] | None:
+    found = re.match(r"([0-9.]+): (.*)", line)
+    return (float(found.group(1)), found.group(2)) if found else None
+
+
+def _shift(lines: Lines, pick: Callable[[int, str], bool], dt: float) -> Lines:
+    out = []
+    for i, line in enumerate(lines):
+        timed = _timed(line)
+        if timed and pick(i, timed[1]):
+            line = f"{timed[0] + dt:.6f}: {timed[1]}"
+        out.append(line)
+    return out
+
+
+def _first_ramp(lines: Lines, name: str) -> set[int]:
+    """Indices of the first run of consecutive ``name`` actions."""
+    idx = [i for i, ln in enumerate(lines) if f"({name})" in ln]
+    run = [idx[0]]
+    for i in idx[1:]:
+        if i != run[-1] + 1:
+            break
+        run.append(i)
+    return set(run)
+
+
+def _drop_cycle(lines: Lines, room: str) -> Lines:
+    on = [i for i, ln in enumerate(lines) if f"heater-on {room})" in ln][1]
+    off = next(i for i, ln in enumerate(lines) if f"heater-off {room})" in ln and i > on)
+    return [ln for i, ln in enumerate(lines) if i not in (on, off)]
+
+
+def _after_first_brake(lines: Lines) -> Callable[[int, str], bool]:
+    first = min(_first_ramp(lines, "decelerate"))
+    return lambda i, a: i > first and a in ("(accelerate)", "(stop)")
+
+
+#: (instance, what breaks, mutation): each broken plan must be rejected by VAL.
+NEGATIVES: list[tuple[str, str, Callable[[Lines], Lines]]] = [
+    ("car_linear/p05", "final ramp and stop 0.3 s late: the car rolls backwards",
+     lambda ls: _shift(ls, _after_first_brake(ls), 0.3)),
+    ("car_limit/p10", "cruise ramp-down 0.5 s late: above the speed limit",
+     lambda ls: _shift(ls, lambda i, a: i in _first_ramp(ls, "decelerate"), 0.5)),
+    ("generator/p04", "refuel t2 started at 5 s: overflow",
+     lambda ls: [re.sub(r"^[0-9.]+: (\(refuel gen t2\))", r"5.000000: \1", ln) for ln in ls]),
+    ("generator_pplus/p04", "refuel t1 started at 1 s: overflow",
+     lambda ls: [re.sub(r"^[0-9.]+: (\(start-refuel gen t1\))", r"1.000000: \1", ln)
+                 for ln in ls]),
+    ("torricelli/p04", "refuel t1 started at 1 s: overflow",
+     lambda ls: [re.sub(r"^[0-9.]+: (\(start-refuel gen t1\))", r"1.000000: \1", ln)
+                 for ln in ls]),
+    ("convoys/p04", "the first arrival 1 s early: the road is not covered",
+     lambda ls: _shift(ls, lambda i, a: i == next(k for k, x in enumerate(ls) if "(arrive" in x),
+                       -1.0)),
+    ("intercept/p06", "capture 0.5 s late: the target is out of reach",
+     lambda ls: _shift(ls, lambda i, a: a == "(capture)", 0.5)),
+    ("thermostat/p05", "one heating cycle of r1 dropped: r1 gets too cold",
+     lambda ls: _drop_cycle(ls, "r1")),
+]
+
+
+def negatives(entries: list[dict[str, object]]) -> int:
+    """Check that VAL rejects every broken plan of NEGATIVES; returns the number accepted."""
+    by_stem = {str(e["problem"]).removesuffix(".pddl"): e for e in entries}
+    accepted = 0
+    for stem, what, mutate in NEGATIVES:
+        entry = by_stem[stem]
+        lines = (HERE / str(entry["reference_plan"])).read_text().splitlines()
+        real = "val_domain" not in entry
+        dom = HERE / str(entry["domain" if real else "val_domain"])
+        prob = HERE / str(entry["problem" if real else "val_problem"])
+        with tempfile.NamedTemporaryFile("w", suffix=".plan", delete=False) as handle:
+            handle.write("\n".join(mutate(lines)) + "\n")
+        verdict = valtools.validate(dom, prob, Path(handle.name))
+        Path(handle.name).unlink()
+        ok = verdict.valid is False
+        accepted += not ok
+        print(f"{'rejected' if ok else 'NOT REJECTED'}: {stem} ({what}; on the "
+              f"{'real files' if real else 'twin'}): {verdict.message[:120]}")
+    return accepted
+
+
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--only", help="comma-separated family names")
     ap.add_argument("--out", type=Path, default=HERE / "results" / "val_check.jsonl")
+    ap.add_argument("--negatives", action="store_true",
+                    help="check that VAL rejects broken variants of reference plans")
     args = ap.parse_args(argv)
     entries = json.loads((HERE / "suite.json").read_text())["problems"]
+    if args.negatives:
+        return 1 if negatives(entries) else 0
     if args.only:
         entries = [e for e in entries if e["family"] in set(args.only.split(","))]
     args.out.parent.mkdir(parents=True, exist_ok=True)

@@ -86,21 +86,20 @@ def write_family(root: Path, family: Family) -> list[dict[str, object]]:
 
 def readme_table(fams: list[Family], counts: dict[str, int]) -> str:
     """The README's family lines: name, instance count, what it exercises, VAL status."""
-    lines = ["| family | instances | exercises | stock VAL |", "|---|---:|---|---|"]
+    lines = ["| family | instances | exercises | stock VAL | reference plans checked by |",
+             "|---|---:|---|---|---|"]
     for family in fams:
-        count = counts[family.name]
-        if family.val_reads:
-            val = "reads it"
-        elif family.val_domain is not None or family.name in TWIN_PER_INSTANCE:
-            val = "cannot read it; a VAL twin in `val/`"
+        if family.val_reads and family.val_integrates:
+            val, check = "parses and validates it", "VAL"
+        elif family.val_reads:
+            val, check = "parses it, cannot integrate its dynamics", "the generator's closed form"
+        elif family.val_domain is not None:
+            val, check = "cannot read it; a VAL twin in `val/`", "VAL on the twin"
         else:
-            val = "cannot read it; no twin"
-        lines.append(f"| `{family.name}` | {count} | {family.summary} | {val} |")
+            val, check = "cannot read it; no twin possible", "the generator's closed form"
+        lines.append(f"| `{family.name}` | {counts[family.name]} | {family.summary} | {val} "
+                     f"| {check} |")
     return "\n".join(lines) + "\n"
-
-
-#: Families whose VAL twins are per instance (no family-level twin domain).
-TWIN_PER_INSTANCE = {"torricelli", "convoys"}
 
 
 def update_readme(root: Path, table: str) -> None:

@@ -296,6 +296,7 @@ FAMILIES = [
                 "nonlinear ODE (tanh / tan solutions), otherwise as car_linear",
         features=("processes", "events", "nonlinear", "pow"),
         domain=car_domain("drag"), build=lambda: _build("drag"), val_reads=False,
+        val_integrates=False,
         notes="VAL cannot read (^ ...); VAL does not integrate v' = a - c v^2 either "
               "(\"Differential equations of this nature are not handled\"), so no VAL twin: "
               "reference plans are checked by the generator's closed-form simulation",

@@ -70,6 +70,7 @@ class Family:
     domain: str | None
     build: Callable[[], list[Instance]]
     val_reads: bool = True  # stock VAL parses the real domain
+    val_integrates: bool = True  # ... and integrates its dynamics (else: no VAL verdict)
     val_domain: str | None = None  # VAL twin of the family's domain (see Instance)
     notes: str = ""
 

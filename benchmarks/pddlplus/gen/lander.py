@@ -144,7 +144,7 @@ FAMILIES = [
                 "touch-down window on height and speed; grows height and speed, tightens the "
                 "window and the fuel",
         features=("processes", "events", "nonlinear", "division"),
-        domain=DOMAIN, build=_build, val_reads=True,
+        domain=DOMAIN, build=_build, val_reads=True, val_integrates=False,
         notes="VAL parses it but does not integrate v' = T/m(t) (\"Quotient polynomials are "
               "not handled yet!\"): reference plans are checked by the generator's closed-form "
               "solution",
