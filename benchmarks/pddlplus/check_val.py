@@ -5,7 +5,8 @@ Usage (from the repository root):
     .venv/bin/python benchmarks/pddlplus/check_val.py [--only FAMILY,...] [--out FILE]
 
 Writes ``benchmarks/pddlplus/results/val_check.jsonl`` (one row per instance) and prints a
-summary per family. ``--negatives`` instead checks that VAL *rejects* broken variants of a few
+summary per family. Each reference plan is also given to Kairos's validator (``kairos
+validate``, on the real files), a second opinion and the only one where VAL cannot integrate. ``--negatives`` instead checks that VAL *rejects* broken variants of a few
 reference plans (one per VAL-checked family): the twins must catch what the real models forbid. A reference plan is checked on the real files where VAL reads them, else on
 the VAL twin (``FAMILY/val/``); families without either are reported as not checked by VAL.
 """
@@ -54,6 +55,8 @@ def check(entry: dict[str, object]) -> dict[str, object]:
             verdict = valtools.validate(*target, HERE / str(entry["reference_plan"]))
             row.update(plan_valid=verdict.valid, plan_message=verdict.message,
                        plan_value=verdict.value, checked_on="twin" if target[0] != dom else "real")
+        second = valtools.kairos_validate(dom, prob, HERE / str(entry["reference_plan"]))
+        row.update(kairos_valid=second.valid, kairos_message=second.message)
     return row
 
 
@@ -101,6 +104,8 @@ def _after_first_brake(lines: Lines) -> Callable[[int, str], bool]:
 NEGATIVES: list[tuple[str, str, Callable[[Lines], Lines]]] = [
     ("car_linear/p05", "final ramp and stop 0.3 s late: the car rolls backwards",
      lambda ls: _shift(ls, _after_first_brake(ls), 0.3)),
+    ("car_drag/p06", "final ramp and stop 0.3 s late: the car rolls backwards",
+     lambda ls: _shift(ls, _after_first_brake(ls), 0.3)),
     ("car_limit/p10", "cruise ramp-down 0.5 s late: above the speed limit",
      lambda ls: _shift(ls, lambda i, a: i in _first_ramp(ls, "decelerate"), 0.5)),
     ("generator/p04", "refuel t2 started at 5 s: overflow",
@@ -116,30 +121,38 @@ NEGATIVES: list[tuple[str, str, Callable[[Lines], Lines]]] = [
                        -1.0)),
     ("intercept/p06", "capture 0.5 s late: the target is out of reach",
      lambda ls: _shift(ls, lambda i, a: a == "(capture)", 0.5)),
+    ("lander/p08", "touch-down 1 s late: the burn has lifted it above the window",
+     lambda ls: _shift(ls, lambda i, a: a == "(touch-down)", 1.0)),
     ("thermostat/p05", "one heating cycle of r1 dropped: r1 gets too cold",
      lambda ls: _drop_cycle(ls, "r1")),
 ]
 
 
 def negatives(entries: list[dict[str, object]]) -> int:
-    """Check that VAL rejects every broken plan of NEGATIVES; returns the number accepted."""
+    """Check that VAL (real files or twin, where it can) and ``kairos validate`` (real files)
+    reject every broken plan of NEGATIVES; returns how many verdicts were not a rejection."""
     by_stem = {str(e["problem"]).removesuffix(".pddl"): e for e in entries}
-    accepted = 0
+    missed = 0
     for stem, what, mutate in NEGATIVES:
         entry = by_stem[stem]
         lines = (HERE / str(entry["reference_plan"])).read_text().splitlines()
-        real = "val_domain" not in entry
-        dom = HERE / str(entry["domain" if real else "val_domain"])
-        prob = HERE / str(entry["problem" if real else "val_problem"])
         with tempfile.NamedTemporaryFile("w", suffix=".plan", delete=False) as handle:
             handle.write("\n".join(mutate(lines)) + "\n")
-        verdict = valtools.validate(dom, prob, Path(handle.name))
-        Path(handle.name).unlink()
-        ok = verdict.valid is False
-        accepted += not ok
-        print(f"{'rejected' if ok else 'NOT REJECTED'}: {stem} ({what}; on the "
-              f"{'real files' if real else 'twin'}): {verdict.message[:120]}")
-    return accepted
+        plan = Path(handle.name)
+        dom, prob = HERE / str(entry["domain"]), HERE / str(entry["problem"])
+        checks = [("kairos", valtools.kairos_validate(dom, prob, plan))]
+        if entry["reference_check"] == "val":
+            checks.insert(0, ("VAL", valtools.validate(dom, prob, plan)))
+        elif entry["reference_check"] == "val-twin":
+            twin = HERE / str(entry["val_domain"]), HERE / str(entry["val_problem"])
+            checks.insert(0, ("VAL twin", valtools.validate(*twin, plan)))
+        plan.unlink()
+        print(f"{stem}: {what}")
+        for tool, verdict in checks:
+            ok = verdict.valid is False
+            missed += not ok
+            print(f"  {tool}: {'rejected' if ok else 'NOT REJECTED'}: {verdict.message[:110]}")
+    return missed
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -168,8 +181,9 @@ def main(argv: list[str] | None = None) -> int:
     by_family: dict[str, list[dict[str, object]]] = defaultdict(list)
     for row in rows:
         by_family[str(row["family"])].append(row)
-    print("| family | VAL parses (0 errors) | twin parses | reference plans valid for VAL |")
-    print("|---|---:|---:|---:|")
+    print("| family | VAL parses (0 errors) | twin parses | reference plans valid for VAL "
+          "| valid for `kairos validate` |")
+    print("|---|---:|---:|---:|---:|")
     for family, group in by_family.items():
         n = len(group)
         parsed = sum(r["parse_errors"] == 0 for r in group)
@@ -177,7 +191,8 @@ def main(argv: list[str] | None = None) -> int:
         twin = f"{sum(r['twin_errors'] == 0 for r in twins)}/{len(twins)}" if twins else "-"
         valid = sum(r.get("plan_valid") is True for r in group)
         checked = sum(r.get("plan_valid") is not None for r in group)
-        print(f"| {family} | {parsed}/{n} | {twin} | {valid}/{checked} (of {n}) |")
+        second = sum(r.get("kairos_valid") is True for r in group)
+        print(f"| {family} | {parsed}/{n} | {twin} | {valid}/{checked} (of {n}) | {second}/{n} |")
     return 0
 
 

@@ -86,3 +86,22 @@ def _reason(out: str) -> str:
             if key in line:
                 return line[:300]
     return lines[-1][:300] if lines else ""
+
+
+def kairos_validate(domain: Path, problem: Path, plan: Path) -> Verdict:
+    """Kairos's own validator (``kairos validate``: continuous time, Runge-Kutta where the
+    change is nonlinear): a second opinion, and the only one where VAL cannot integrate."""
+    import shutil
+    import sys
+
+    program = shutil.which("kairos") or str(Path(sys.executable).parent / "kairos")
+    cmd = ["timeout", str(TIME_LIMIT_S), program, "validate", str(domain), str(problem), str(plan)]
+    proc = subprocess.run(cmd, capture_output=True, text=True, check=False)
+    out = (proc.stdout + proc.stderr).strip()
+    last = out.splitlines()[-1] if out else ""
+    if "plan valid" in out:
+        return Verdict(True, last)
+    if "plan invalid" in out:
+        reason = next((ln.strip() for ln in out.splitlines() if "error" in ln.lower()), last)
+        return Verdict(False, reason[:300])
+    return Verdict(None, f"kairos validate exited {proc.returncode}: {last[:200]}")
