@@ -5,10 +5,13 @@ Usage (from the repository root):
     .venv/bin/python benchmarks/pddlplus/check_val.py [--only FAMILY,...] [--out FILE]
 
 Writes ``benchmarks/pddlplus/results/val_check.jsonl`` (one row per instance) and prints a
-summary per family. Each reference plan is also given to Kairos's validator (``kairos
-validate``, on the real files), a second opinion and the only one where VAL cannot integrate. ``--negatives`` instead checks that VAL *rejects* broken variants of a few
-reference plans (one per VAL-checked family): the twins must catch what the real models forbid. A reference plan is checked on the real files where VAL reads them, else on
+summary per family. A reference plan is checked on the real files where VAL reads them, else on
 the VAL twin (``FAMILY/val/``); families without either are reported as not checked by VAL.
+Each reference plan is also given to Kairos's validator (``kairos validate``, on the real
+files): a second opinion, and the only one where VAL cannot integrate.
+
+``--negatives`` instead checks that VAL and ``kairos validate`` *reject* broken variants of a
+reference plan per family: the twins must catch what the real models forbid.
 """
 
 from __future__ import annotations
@@ -18,8 +21,8 @@ import json
 import re
 import sys
 import tempfile
-from collections.abc import Callable
 from collections import defaultdict
+from collections.abc import Callable
 from pathlib import Path
 
 HERE = Path(__file__).resolve().parent

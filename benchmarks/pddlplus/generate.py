@@ -1,7 +1,7 @@
 """Write artiplan's general PDDL+ benchmark set: every family, its instances, reference plans.
 
 Usage (from the repository root):
-    .venv/bin/python benchmarks/pddlplus/generate.py [--out benchmarks/pddlplus] [--only car_linear,...]
+    .venv/bin/python benchmarks/pddlplus/generate.py [--out DIR] [--only car_linear,...]
 
 Deterministic: the same files on every run (fixed seeds, no clock). Per family FAMILY it writes
 ``FAMILY/domain.pddl`` (or ``FAMILY/dNN.pddl`` where each instance has its own domain),

@@ -184,7 +184,8 @@ def run(args: argparse.Namespace) -> int:
             row.update(val_check(entry, row["plan"]))
         if row.get("unshifted_plan"):
             raw = val_check(entry, row["unshifted_plan"])
-            row.update(val_unshifted_valid=raw["val_valid"], val_unshifted_message=raw["val_message"])
+            row.update(val_unshifted_valid=raw["val_valid"],
+                       val_unshifted_message=raw["val_message"])
         row = {"schema": SCHEMA, "planner": planner, "family": entry["family"],
                "size": entry["size"], "problem": entry["problem"], **row,
                "time_limit": args.time_limit, "host": socket.gethostname(),

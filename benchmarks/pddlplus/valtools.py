@@ -68,7 +68,8 @@ def validate(domain: Path, problem: Path, plan: Path) -> Verdict:
         return Verdict(True, "valid", float(value.group(1)) if value else None)
     if code == 124:
         return Verdict(None, f"VAL timed out after {TIME_LIMIT_S} s")
-    if "Failed plans" in out or "Plan failed" in out or "Bad plan" in out or "Goal not satisfied" in out:
+    failed = ("Failed plans", "Plan failed", "Bad plan", "Goal not satisfied")
+    if any(key in out for key in failed):
         return Verdict(False, _reason(out))
     return Verdict(None, _reason(out) or f"Validate exited {code}")
 

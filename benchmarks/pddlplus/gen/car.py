@@ -71,7 +71,8 @@ _LIMIT = """  ;; ENHSP global constraint: the speed limit holds over the whole t
     :condition (and (<= (v) (v-limit))))
 """
 
-_LIMIT_TWIN = """  ;; VAL twin of the global constraint: exceeding the limit earns a ticket, and a ticketed
+_LIMIT_TWIN = """\
+  ;; VAL twin of the global constraint: exceeding the limit earns a ticket, and a ticketed
   ;; car may not stop (same actions, same trajectories as the ENHSP domain)
   (:event speeding
     :parameters ()
@@ -147,10 +148,13 @@ def _segment(v: float, d: float, a: float, c: float, dt: float) -> tuple[float, 
     if t0 < dt:
         return _segment(0.0, d - math.log(math.cos(th0)) / c, a, c, dt - t0)
     th1 = th0 - k * dt
-    return math.sqrt(-a / c) * math.tan(th1), d + (math.log(math.cos(th1)) - math.log(math.cos(th0))) / c
+    d1 = d + (math.log(math.cos(th1)) - math.log(math.cos(th0))) / c
+    return math.sqrt(-a / c) * math.tan(th1), d1
 
 
-def simulate(changes: list[tuple[float, int]], until: float, c: float) -> tuple[float, float, float]:
+def simulate(
+    changes: list[tuple[float, int]], until: float, c: float
+) -> tuple[float, float, float]:
     """(v, d, max v) at ``until`` for acceleration changes ``(time, +-1)`` from rest at 0."""
     v = d = 0.0
     a = 0.0
@@ -231,10 +235,11 @@ def _plan(ref: dict[str, object]) -> str:
 # (distance, window width, max-a, v-max (linear) / drag coefficient, v-tol, deadline slack)
 _LINEAR = [(30, 10, 1, 12, 0.5, 1.0), (50, 6, 1, 14, 0.3, 0.8), (80, 4, 2, 16, 0.2, 0.6),
            (120, 3, 2, 18, 0.1, 0.5), (200, 2, 3, 20, 0.1, 0.4), (300, 1.5, 3, 24, 0.05, 0.3),
-           (500, 1, 4, 28, 0.05, 0.25), (800, 0.6, 4, 32, 0.02, 0.2), (1200, 0.4, 5, 36, 0.02, 0.15),
-           (2000, 0.2, 5, 40, 0.01, 0.1)]
+           (500, 1, 4, 28, 0.05, 0.25), (800, 0.6, 4, 32, 0.02, 0.2),
+           (1200, 0.4, 5, 36, 0.02, 0.15), (2000, 0.2, 5, 40, 0.01, 0.1)]
 _DRAGS = [(30, 10, 1, 0.02, 0.5, 1.0), (50, 6, 1, 0.02, 0.3, 0.8), (80, 4, 2, 0.02, 0.2, 0.6),
-          (120, 3, 2, 0.015, 0.1, 0.5), (200, 2, 3, 0.015, 0.1, 0.4), (300, 1.5, 3, 0.01, 0.05, 0.3),
+          (120, 3, 2, 0.015, 0.1, 0.5), (200, 2, 3, 0.015, 0.1, 0.4),
+          (300, 1.5, 3, 0.01, 0.05, 0.3),
           (500, 1, 4, 0.01, 0.05, 0.25), (800, 0.6, 4, 0.008, 0.02, 0.2),
           (1200, 0.4, 5, 0.006, 0.02, 0.15), (2000, 0.2, 5, 0.005, 0.01, 0.1)]
 
@@ -265,7 +270,7 @@ def _build(kind: str) -> list[Instance]:
             values["drag"] = c
         if kind == "limit":
             values["v-limit"] = v_limit
-        params = {"distance": center, "window": width, "max_a": big_a, "v_tol": vtol,
+        params: dict[str, object] = {"distance": center, "window": width, "max_a": big_a, "v_tol": vtol,
                   "deadline": deadline, "deadline_slack": slack, "v_max": v_max}
         if kind == "drag":
             params["drag"] = c

@@ -169,7 +169,8 @@ def _tor_level(level0: float, root0: float, flow: float, t: float) -> float:
 
 def _tor_hits(level0: float, root0: float, flow: float, target: float) -> float | None:
     """The first time > 0 the pour's level reaches ``target`` (a quadratic), or None."""
-    # level(t) = level0 - t + root0^2 - (root0 - flow t/2)^2 = level0 + (flow root0 - 1) t - flow^2 t^2/4
+    # level(t) = level0 - t + root0^2 - (root0 - flow t/2)^2
+    #          = level0 + (flow root0 - 1) t - flow^2 t^2 / 4
     a, b, c = -flow * flow / 4, flow * root0 - 1, level0 - target
     disc = b * b - 4 * a * c
     if disc < 0:
@@ -183,7 +184,8 @@ def torricelli_pours(cap: int, roots: list[int], flows: list[float]) -> tuple[li
     """Pours for the Torricelli generator (reserve = 1, i.e. root 1); and the final level."""
     t, level = 0.0, float(cap - 1)
     pours: list[Pour] = []
-    for i, (root, flow) in enumerate(zip(roots, flows), start=1):
+    for i, (first_root, flow) in enumerate(zip(roots, flows, strict=True), start=1):
+        root = float(first_root)
         while root > 1 + 1e-9:
             to_reserve = 2 * (root - 1) / flow
             # start at the level that keeps the pour above LOW and, if it runs to the reserve,
@@ -203,7 +205,7 @@ def torricelli_pours(cap: int, roots: list[int], flows: list[float]) -> tuple[li
             # a stop within 0.05 s of the reserve would race the tank-empty event: let it empty
             # (the level then ends within 0.05 s of flow of cap - HEADROOM, still under cap)
             empties = hit is None or hit >= to_reserve - 0.05
-            length = to_reserve if empties else hit
+            length = to_reserve if empties or hit is None else hit
             new_root = root - flow * length / 2
             low_point = min(level, _tor_level(level, root, flow, length))  # concave: ends
             assert low_point >= LOW / 2, f"tank t{i} would run the generator dry"
@@ -243,7 +245,7 @@ def _build_linear(kind: str) -> list[Instance]:
         pours, _ = linear_pours(cap, amounts)
         end = pours[-1].start + pours[-1].length
         assert end + GAP < duration
-        init = ["(= (fuel gen) %d) (= (capacity gen) %d)" % (cap - 1, cap),
+        init = [f"(= (fuel gen) {cap - 1}) (= (capacity gen) {cap})",
                 f"(= (gen-duration) {duration}) (= (refuel-rate) 2)"]
         init += [f"(= (tank-fuel t{i}) {x}) (available t{i})" for i, x in enumerate(amounts, 1)]
         params = {"tanks": n, "capacity": cap, "gen_duration": duration, "tank_fuel": amounts,
@@ -276,7 +278,7 @@ def _build_torricelli() -> list[Instance]:
         duration = cap - 1 + sum(delivered) - MARGIN
         pours, _ = torricelli_pours(cap, roots, flows)
         assert pours[-1].start + pours[-1].length + GAP < duration
-        base = ["(= (fuel gen) %d) (= (capacity gen) %d)" % (cap - 1, cap),
+        base = [f"(= (fuel gen) {cap - 1}) (= (capacity gen) {cap})",
                 f"(= (gen-duration) {duration})", "(idle gen) (= (gen-time gen) 0)"]
         tanks = [f"(= (flow t{i}) {num(f)}) (available t{i})" for i, f in enumerate(flows, 1)]
         real = base + ["(= (reserve) 1)"] + tanks + [

@@ -115,7 +115,8 @@ def _build() -> list[Instance]:
         turns = []
         for when in sorted(rng.uniform(0.1, 0.95) * capture for _ in range(n_turns)):
             head += rng.choice((-1, 1)) * rng.uniform(math.pi / 6, math.pi / 2)
-            turns.append((round(when, 2), round(vt * math.cos(head), 4), round(vt * math.sin(head), 4)))
+            turns.append((round(when, 2), round(vt * math.cos(head), 4),
+                          round(vt * math.sin(head), 4)))
         gx, gy = target_at(capture, start, velocity, turns)
         j, a, j2, b = bracket(gx, gy, k)
         speed = round((a + b) / (0.8 * capture), 4)

@@ -106,8 +106,8 @@ def reference(h0: float, v0: float, g: float, thrust: float, mass: float, touch:
 def _build() -> list[Instance]:
     rng = random.Random(51)
     out = []
-    for size, (h0, v0, g, twr, touch, safe, slack) in enumerate(SIZES, start=1):
-        h0 = h0 + round(rng.uniform(0, 50), 1)
+    for size, (base_h, v0, g, twr, touch, safe, slack) in enumerate(SIZES, start=1):
+        h0 = base_h + round(rng.uniform(0, 50), 1)
         fuel = 200.0
         for _ in range(30):  # the fuel is part of the mass: iterate to the fixed point
             mass = DRY_MASS + fuel

@@ -27,7 +27,8 @@ _DOMAIN = """(define (domain {name})
   (:functions (temp ?r - room) (heat-rate ?r - room) (loss-rate ?r - room)
               (t-low ?r - room) (t-high ?r - room) (t-goal ?r - room)
               (clock) (horizon) (power-used) (max-power))
-{constraint}  ;; (in-building ?r) is static; it is here because stock VAL's Validate crashes (SIGSEGV) on
+{constraint}\
+  ;; (in-building ?r) is static; it is here because stock VAL's Validate crashes (SIGSEGV) on
   ;; a process whose precondition does not mention its parameter
   (:process cooling
     :parameters (?r - room)
@@ -56,7 +57,8 @@ _DOMAIN = """(define (domain {name})
 )
 """
 
-_CONSTRAINT = """  ;; ENHSP global constraint: every room stays in its band over the whole trajectory
+_CONSTRAINT = """\
+  ;; ENHSP global constraint: every room stays in its band over the whole trajectory
   (:constraint comfort
     :parameters (?r - room)
     :condition (and (>= (temp ?r) (t-low ?r)) (<= (temp ?r) (t-high ?r))))
@@ -156,7 +158,8 @@ def _problem(name: str, domain: str, rooms: list[Room], horizon: float, power: i
     init = ["(on-shift) (= (clock) 0)", f"(= (horizon) {num(horizon)})",
             f"(= (power-used) 0) (= (max-power) {power})"]
     for r in rooms:
-        init.append(f"(in-building {r.name}) (= (temp {r.name}) {num(r.temp)}) (= (heat-rate {r.name}) {num(r.heat)}) "
+        init.append(f"(in-building {r.name}) (= (temp {r.name}) {num(r.temp)}) "
+                    f"(= (heat-rate {r.name}) {num(r.heat)}) "
                     f"(= (loss-rate {r.name}) {num(r.loss)})")
         init.append(f"(= (t-low {r.name}) {num(r.low)}) (= (t-high {r.name}) {num(r.high)}) "
                     f"(= (t-goal {r.name}) {num(r.low + r.margin / 3)})")
