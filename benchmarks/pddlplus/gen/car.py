@@ -270,8 +270,9 @@ def _build(kind: str) -> list[Instance]:
             values["drag"] = c
         if kind == "limit":
             values["v-limit"] = v_limit
-        params: dict[str, object] = {"distance": center, "window": width, "max_a": big_a, "v_tol": vtol,
-                  "deadline": deadline, "deadline_slack": slack, "v_max": v_max}
+        params: dict[str, object] = {
+            "distance": center, "window": width, "max_a": big_a, "v_tol": vtol,
+            "deadline": deadline, "deadline_slack": slack, "v_max": v_max}
         if kind == "drag":
             params["drag"] = c
         if kind == "limit":
