@@ -126,6 +126,9 @@ NEGATIVES: list[tuple[str, str, Callable[[Lines], Lines]]] = [
      lambda ls: _shift(ls, lambda i, a: a == "(capture)", 0.5)),
     ("lander/p08", "touch-down 1 s late: the burn has lifted it above the window",
      lambda ls: _shift(ls, lambda i, a: a == "(touch-down)", 1.0)),
+    ("rover/p05", "first charge stopped 10 s early: too little energy for what follows",
+     lambda ls: _shift(ls, lambda i, a: i == next(k for k, x in enumerate(ls)
+                                                   if "(stow-panels)" in x), -10.0)),
     ("thermostat/p05", "one heating cycle of r1 dropped: r1 gets too cold",
      lambda ls: _drop_cycle(ls, "r1")),
 ]

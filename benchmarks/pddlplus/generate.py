@@ -26,7 +26,7 @@ from gen.common import Family, Instance  # noqa: E402
 
 SCHEMA = "artiplan.suite/1"
 #: The family modules of gen/, in the README's order.
-MODULES = ("car", "generator", "convoys", "intercept", "lander", "thermostat")
+MODULES = ("car", "generator", "convoys", "intercept", "lander", "thermostat", "rover")
 
 
 def families() -> list[Family]:
