@@ -144,7 +144,10 @@ def tour(rng: random.Random, width: int, height: int, n: int) -> tuple[
     path, here, left = [nodes[0]], nodes[0], list(targets)
     while left:
         legs = {t: _shortest(dist, here, t) for t in left}
-        nxt = min(left, key=lambda t: (sum(dist[e] for e in zip(legs[t], legs[t][1:])), t))
+        def length(t: str) -> tuple[float, str]:
+            return sum(dist[e] for e in zip(legs[t], legs[t][1:], strict=False)), t
+
+        nxt = min(left, key=length)
         path += legs[nxt][1:]
         here = nxt
         left.remove(nxt)
@@ -169,7 +172,8 @@ def _shortest(dist: dict[tuple[str, str], float], a: str, b: str) -> list[str]:
 def reference(path: list[str], dist: dict[tuple[str, str], float], targets: list[str],
               capacity: float, sun: Sun) -> tuple[list[Step], float] | None:
     """The tour's plan and its last action's time; None if it cannot finish before dusk."""
-    t, battery, steps = 0.0, BATTERY0, []
+    t, battery = 0.0, BATTERY0
+    steps: list[Step] = []
     todo = set(targets)
     for k, here in enumerate(path):
         if here in todo:
@@ -211,26 +215,29 @@ def _charge(steps: list[Step], t: float, battery: float, need: float, capacity: 
     return stop + GAP, battery + sun.energy(start, stop)
 
 
+def _fits(noon: float, path: list[str], dist: dict[tuple[str, str], float], targets: list[str],
+          capacity: float, slack: float) -> tuple[list[Step], float] | None:
+    """The reference plan if it ends before dusk / (1 + slack) with this noon, else None."""
+    sun = Sun(noon)
+    plan = reference(path, dist, targets, capacity, sun)
+    if plan is None or not math.isfinite(plan[1]) or plan[1] * (1 + slack) > sun.dusk:
+        return None
+    return plan
+
+
 def _build() -> list[Instance]:
     rng = random.Random(71)
     out = []
     for size, (width, height, n, capacity, slack) in enumerate(SIZES, start=1):
         nodes, dist, targets, path = tour(rng, width, height, n)
-
-        def works(noon: float) -> tuple[list[Step], float] | None:
-            sun = Sun(noon)
-            plan = reference(path, dist, targets, capacity, sun)
-            if plan is None or not math.isfinite(plan[1]) or plan[1] * (1 + slack) > sun.dusk:
-                return None
-            return plan
-
+        task = (path, dist, targets, float(capacity), slack)
         lo, hi = 1.0, 400.0  # the earliest noon (to 0.5 s) whose day still fits the tour
-        assert works(hi) is not None, f"rover size {size}: even a long day is too short"
+        assert _fits(hi, *task) is not None, f"rover size {size}: even a long day is too short"
         while hi - lo > 0.25:
             mid = (lo + hi) / 2
-            lo, hi = (lo, mid) if works(mid) is not None else (mid, hi)
+            lo, hi = (lo, mid) if _fits(mid, *task) is not None else (mid, hi)
         noon = math.ceil(hi * 2) / 2
-        found = works(noon)
+        found = _fits(noon, *task)
         assert found is not None
         steps, end = found
         init = ["(mission) (morning) (parked) (= (clock) 0)",
@@ -240,7 +247,8 @@ def _build() -> list[Instance]:
                 f"(= (speed) {num(SPEED)}) (= (drive-power) {num(POWER)}) (= (progress) 0)",
                 f"(= (image-cost) {num(IMAGE)}) (= (send-cost) {num(SEND)})"]
         init += [f"(target {w})" for w in targets]
-        init += [f"(road {a} {b}) (= (dist {a} {b}) {num(d)})" for (a, b), d in sorted(dist.items())]
+        init += [f"(road {a} {b}) (= (dist {a} {b}) {num(d)})"
+                 for (a, b), d in sorted(dist.items())]
         body = "\n    ".join(init)
         goal = " ".join(f"(sent {w})" for w in targets)
         problem = (f"(define (problem solar-rover-{size:02d})\n  (:domain solar-rover)\n"
