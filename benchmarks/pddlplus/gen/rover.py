@@ -144,10 +144,8 @@ def tour(rng: random.Random, width: int, height: int, n: int) -> tuple[
     path, here, left = [nodes[0]], nodes[0], list(targets)
     while left:
         legs = {t: _shortest(dist, here, t) for t in left}
-        def length(t: str) -> tuple[float, str]:
-            return sum(dist[e] for e in zip(legs[t], legs[t][1:], strict=False)), t
-
-        nxt = min(left, key=length)
+        lengths = {t: sum(dist[e] for e in zip(p, p[1:], strict=False)) for t, p in legs.items()}
+        nxt = min(left, key=lambda t: (lengths[t], t))
         path += legs[nxt][1:]
         here = nxt
         left.remove(nxt)
