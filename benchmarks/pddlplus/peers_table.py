@@ -1,13 +1,15 @@
 """Markdown tables of ``run_peers.py`` results: a summary per family and a table per family.
 
-A cell reads ``1.23 s ok`` (solved, VAL accepts the plan), ``1.23 s VAL-x`` (VAL rejects it),
-``1.23 s (no VAL)`` (VAL cannot check this family), or the run's status (``timeout``,
-``error``, ``bad-input``, ``crash`` ...). Times are CPU seconds of the planner's process tree.
+A cell reads ``1.23 s ok`` (solved, VAL accepts the plan), ``1.23 s VAL-x`` (VAL rejects it);
+where VAL cannot check the family, ``kv-ok`` / ``kv-x`` is the verdict of ``kairos validate``
+(``run_peers.py --second-opinion``); otherwise the run's status (``timeout``, ``error``,
+``bad-input``, ``crash`` ...). Times are CPU seconds of the planner's process tree.
 """
 
 from __future__ import annotations
 
 import json
+import re
 import statistics
 from collections import defaultdict
 from pathlib import Path
@@ -37,7 +39,9 @@ def cell(row: Row | None) -> str:
         if row["planner"] == "artiplan" and row.get("returncode") is not None:
             status += f" (exit {row['returncode']})"
         return status
-    verdict = {True: "ok", False: "VAL-x", None: "(no VAL)"}[row.get("val_valid")]
+    verdict = {True: "ok", False: "VAL-x", None: ""}[row.get("val_valid")]
+    if row.get("val_valid") is None:  # VAL cannot check this family: Kairos's validator
+        verdict = {True: "kv-ok", False: "kv-x", None: "(unchecked)"}[row.get("kairos_valid")]
     return f"{row['cpu_s']:.2f} s {verdict}"
 
 
@@ -46,8 +50,11 @@ def _counts(rows: list[Row]) -> str:
     valid = sum(r.get("val_valid") is True for r in solved)
     unchecked = sum(r.get("val_valid") is None for r in solved)
     text = f"{len(solved)}/{len(rows)}"
-    if solved:
-        text += f", VAL ok {valid}" + (f" (+{unchecked} unchecked)" if unchecked else "")
+    if solved and unchecked < len(solved):
+        text += f", VAL ok {valid}"
+    if unchecked:
+        kv = sum(r.get("kairos_valid") is True for r in solved if r.get("val_valid") is None)
+        text += f", kairos-validate ok {kv} of {unchecked} VAL cannot check"
     return text
 
 
@@ -77,11 +84,44 @@ def family_table(rows: list[Row], planners: list[str], family: str) -> str:
     return "\n".join(lines) + "\n"
 
 
+def reason(row: Row) -> str:
+    """The gist of a failed run: the exception, or artiplan's ``error:`` message, shortened."""
+    text = str(row.get("stderr_tail") or row.get("output_tail") or row.get("message") or "")
+    exc = re.findall(r"^\s*(\w+(?:Error|Exception)): (.*)$", text, re.M)
+    if exc:
+        name, msg = exc[-1]
+        return f"{name}: {msg}"[:110]
+    found = re.search(r"error: \S+?:(\d+):(\d+): (.*)", text)
+    if found:
+        return f"{found.group(3)}"[:110]
+    return str(row.get("message", ""))[:110]
+
+
+def before_picture(rows: list[Row], families: list[str], planner: str = "artiplan") -> str:
+    """Per family: how today's ``planner`` ends on its instances, with the typical message."""
+    lines = [f"| family | {planner}: outcomes | message |", "|---|---|---|"]
+    for fam in families:
+        mine = [r for r in rows if r["family"] == fam and r["planner"] == planner]
+        if not mine:
+            continue
+        counts: dict[str, int] = defaultdict(int)
+        for r in mine:
+            code = r.get("returncode")
+            counts[f"{r['status']} (exit {code})" if code is not None else r["status"]] += 1
+        failed = [reason(r) for r in mine if r["status"] != "solved"]
+        common = max(set(failed), key=failed.count) if failed else ""
+        outcome = ", ".join(f"{n} {k}" for k, n in sorted(counts.items()))
+        lines.append(f"| {fam} | {outcome} | {common.replace('|', '/')} |")
+    return "\n".join(lines) + "\n"
+
+
 def tables(path: Path) -> str:
     rows = load(path)
     planners = list(dict.fromkeys(r["planner"] for r in rows))
     families = list(dict.fromkeys(r["family"] for r in rows))
     parts = ["## Summary\n", summary(rows, planners, families)]
+    if "artiplan" in planners:
+        parts += ["\n## Today's artiplan (before)\n", before_picture(rows, families)]
     for fam in families:
         parts += [f"\n### {fam}\n", family_table(rows, planners, fam)]
     return "\n".join(parts)

@@ -5,6 +5,7 @@ Usage (from the repository root, one process at a time on a shared machine):
         [--planners enhsp,kairos,artiplan] [--only FAMILY,...] [--sizes 1,2] [--time-limit 60] \\
         [--out benchmarks/pddlplus/results/peers.jsonl]
     .venv/bin/python benchmarks/pddlplus/run_peers.py --table [--out ...]   # Markdown tables
+    .venv/bin/python benchmarks/pddlplus/run_peers.py --second-opinion     # + kairos validate
 
 One JSON line per (planner, problem), appended as soon as the run ends; a rerun skips what the
 file already holds (resumable after a kill). Planners:
@@ -149,6 +150,29 @@ def val_check(entry: dict[str, Any], plan: str) -> dict[str, Any]:
     return {"val_valid": verdict.valid, "val_message": verdict.message[:400], "val_on": on}
 
 
+def second_opinion(out: Path) -> int:
+    """Add ``kairos validate``'s verdict (real files) to every row with a plan that lacks one;
+    rewrites ``out`` (run it when no run is appending). Returns how many rows were checked."""
+    rows = [json.loads(line) for line in out.read_text().splitlines() if line.strip()]
+    checked = 0
+    for row in rows:
+        if not row.get("plan") or "kairos_valid" in row:
+            continue
+        with tempfile.NamedTemporaryFile("w", suffix=".plan", delete=False) as handle:
+            handle.write(row["plan"])
+        try:
+            dom = HERE / row["problem"].split("/")[0] / "domain.pddl"
+            verdict = valtools.kairos_validate(dom, HERE / row["problem"], Path(handle.name))
+        finally:
+            Path(handle.name).unlink()
+        row.update(kairos_valid=verdict.valid, kairos_message=verdict.message[:300])
+        checked += 1
+    tmp = out.with_suffix(".tmp")
+    tmp.write_text("".join(json.dumps(r) + "\n" for r in rows))
+    tmp.replace(out)
+    return checked
+
+
 def done_keys(out: Path) -> set[tuple[str, str]]:
     if not out.exists():
         return set()
@@ -206,7 +230,12 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--time-limit", type=float, default=60.0, help="CPU-time limit [s]")
     ap.add_argument("--out", type=Path, default=DEFAULT_OUT)
     ap.add_argument("--table", action="store_true", help="print the Markdown tables and exit")
+    ap.add_argument("--second-opinion", action="store_true",
+                    help="add `kairos validate`'s verdict to every plan in --out, then exit")
     args = ap.parse_args(argv)
+    if args.second_opinion:
+        print(f"{second_opinion(args.out)} plans checked by kairos validate", file=sys.stderr)
+        return 0
     if args.table:
         from peers_table import tables
 
