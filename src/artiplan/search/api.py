@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import dataclasses
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
@@ -25,7 +25,9 @@ from artiplan.search.engine import Apply, Search, SearchConfig, SearchOutcome, i
 from artiplan.search.heuristic import Heuristic, HeuristicConfig, RateHeuristic
 from artiplan.search.improve import improve
 from artiplan.search.limits import LimitReached, Limits
+from artiplan.search.numeric import NumericHeuristic
 from artiplan.search.proofs import prove_unsolvable
+from artiplan.search.timing import Repair, repair_times
 from artiplan.semantics.compiled import CompiledTask, compile_task
 from artiplan.semantics.kernel import Kernel
 from artiplan.semantics.plan import Plan, TimedAction, TimedEvent, fold_durative
@@ -92,11 +94,49 @@ OPTIONS: dict[str, type] = {f.name: type(f.default) for f in dataclasses.fields(
 #: ``on_progress(elapsed [s], statistics so far)``: called every 2 s of a long planning call.
 Progress = Callable[[float, PlanStats], None]
 
-#: Restarts (time weight, damage cost, expansion budget per goal conjunct): greedy search is
-#: fast when its heuristic fits and lost when it does not; another weighting often fits. Budgets
-#: count expansions, not seconds, so a run is the same on any machine. The last is unbounded.
-SCHEDULE = ((None, 2.0, 20), (None, 5.0, 40), (0.3, 2.0, 40), (1.0, 2.0, 80), (0.03, 2.0, 160),
-            (None, 2.0, None))
+@dataclass(frozen=True)
+class Attempt:
+    """One greedy search of the restart schedule.
+
+    Attributes:
+        numeric: Use the general numeric relaxation (:mod:`artiplan.search.numeric`) with free
+            waits, instead of the configured (rate) heuristic with critical-time waits.
+        time_weight: The heuristic's cost of a second [actions/s] (None: the config's).
+        damage: Cost of undoing a goal already reached (the rate heuristic's).
+        per_goal: Expansion budget per goal conjunct (times at least 5); None: unbounded.
+        delta: Step of the free waits [s] (numeric attempts).
+    """
+
+    numeric: bool
+    time_weight: float | None
+    damage: float
+    per_goal: int | None
+    delta: float | None = None
+
+
+#: Restarts: greedy search is fast when its heuristic fits and lost when it does not; another
+#: weighting often fits. The paper's encodings are solved by the first attempts (rate heuristic,
+#: waits to critical times); other domains need choices of time no condition marks (free waits
+#: on a grid of ``delta`` seconds, refined round by round) and a relaxation that reads numeric
+#: preconditions. Budgets count expansions, not seconds, so a run is the same on any machine.
+FIRST = (Attempt(False, None, 2.0, 20), Attempt(False, None, 5.0, 40),
+         Attempt(True, None, 2.0, 100, 1.0), Attempt(False, 0.3, 2.0, 40),
+         Attempt(False, 1.0, 2.0, 80), Attempt(True, None, 2.0, 200, 0.5),
+         Attempt(False, 0.03, 2.0, 160))
+#: Free-wait steps [s] of the rounds after ``FIRST`` (each round doubles the budgets); the
+#: finest one is searched without a budget.
+DELTAS = (1.0, 0.5, 0.25, 0.1, 0.05)
+
+
+def schedule() -> Iterator[Attempt]:
+    """The attempts in order: ``FIRST``, then rounds of (numeric, rate) with doubled budgets
+    and finer steps, ending with an unbounded numeric search on the finest step."""
+    yield from FIRST
+    for r, delta in enumerate(DELTAS):
+        last = r == len(DELTAS) - 1
+        yield Attempt(True, None, 2.0, None if last else 400 * 2 ** r, delta)
+        if not last:
+            yield Attempt(False, None, 2.0, 320 * 2 ** r)
 
 
 def plan(
@@ -163,6 +203,7 @@ class _Planning:
         self.limits = Limits(time_limit, memory_limit,
                              on_progress=self._report if on_progress else None)
         self.best: tuple[Plan, ValidationReport | None] | None = None
+        self.winner = FIRST[0]  # the attempt that found the first plan
 
     def _report(self, elapsed: float) -> None:
         assert self.on_progress is not None
@@ -180,7 +221,7 @@ class _Planning:
         if reason is not None:
             return PlanResult(PlanStatus.UNSOLVABLE_PROVEN, message=reason)
         outcome = self._search()
-        if outcome.goal is None or self.best is None:
+        if (outcome.goal is None and not outcome.repaired) or self.best is None:
             return PlanResult(PlanStatus.NO_PLAN, message="search space exhausted without a "
                               "plan (not a proof: waits stop only at critical times)")
         if self.config.improve:
@@ -195,19 +236,22 @@ class _Planning:
         return PlanResult(PlanStatus.SOLVED, found, trajectory)
 
     def _search(self) -> SearchOutcome:
-        """Greedy searches with restarts (``SCHEDULE``) until a validated plan."""
-        config, stats = self.config, self.stats
+        """Greedy searches with restarts (:func:`schedule`) until a validated plan."""
+        stats = self.stats
         t = time.perf_counter()
         outcome: SearchOutcome | None = None
+        exhausted: set[tuple[bool, float | None]] = set()
         try:
-            for attempt, (weight, damage, per_goal) in enumerate(SCHEDULE, 1):
-                heur = config.heuristic(self.ct, HeuristicConfig(
-                    time_weight=weight or config.time_weight, damage_cost=damage),
-                    self.kernel.active)
-                budget = float("inf") if per_goal is None else per_goal * max(5, len(heur.groups))
-                search = Search(self.ct, self.kernel, heur, config.search(), self.limits.check,
-                                self._accept)
-                stats.attempts = attempt
+            for n, attempt in enumerate(schedule(), 1):
+                kind = (attempt.numeric, attempt.delta)
+                if kind in exhausted:
+                    continue  # the same operators searched their whole space already
+                heur, search_config = self._attempt(attempt)
+                budget = float("inf") if attempt.per_goal is None else \
+                    attempt.per_goal * max(5, len(heur.groups))
+                search = Search(self.ct, self.kernel, heur, search_config, self.limits.check,
+                                self._accept, repair=self._repair if attempt.numeric else None)
+                stats.attempts = n
                 self.running = search
                 try:
                     outcome = search.run(initial_node(self.ct, self.kernel), budget)
@@ -215,14 +259,62 @@ class _Planning:
                     self.running = None
                     stats.heuristic_s += heur.seconds
                     stats.add(search.stats)
-                if outcome.goal is not None or outcome.exhausted:
+                if outcome.goal is not None or outcome.repaired:
+                    self.winner = attempt
                     break
+                if outcome.exhausted:
+                    exhausted.add(kind)
+                    if not attempt.numeric:
+                        exhausted.add((False, None))
+                    if attempt.numeric and attempt.delta == DELTAS[-1]:
+                        break
         finally:
             stats.add(self.kernel.counters)
             self.kernel.counters = dict.fromkeys(self.kernel.counters, 0)
             stats.search_s = time.perf_counter() - t - stats.validate_s
         assert outcome is not None
         return outcome
+
+    def _attempt(self, attempt: Attempt,
+                 time_weight: float | None = None) -> tuple[Heuristic, SearchConfig]:
+        """The heuristic and search settings of one attempt."""
+        config = self.config
+        weight = time_weight or attempt.time_weight or config.time_weight
+        hc = HeuristicConfig(time_weight=weight, damage_cost=attempt.damage)
+        if not attempt.numeric:
+            return config.heuristic(self.ct, hc, self.kernel.active), config.search()
+        heur = NumericHeuristic(self.ct, hc, self.kernel.active)
+        return heur, dataclasses.replace(config.search(), delta=attempt.delta,
+                                         before_events=True, g_weight=1.0)
+
+    def _repair(self, actions: list[int], times: list[float]) -> bool:
+        """A timing repair of a skeleton (:mod:`artiplan.search.timing`); True when the
+        repaired plan is valid (it becomes the best plan)."""
+        t = time.perf_counter()
+        settings = Repair(epsilon=self.config.epsilon, event_gap=self.config.event_gap)
+        evals: list[int] = []
+        try:
+            fixed = repair_times(self.ct, self.kernel, actions, times, settings,
+                                 self.limits.check, evals)
+        finally:
+            self.stats.repair_s += time.perf_counter() - t
+            self.stats.repair_evals += sum(evals)
+        if fixed is None:
+            return False
+        acts = self.ct.actions
+        found = fold_durative(Plan(tuple(TimedAction(round(at, 6), acts[a].name, acts[a].args)
+                                         for a, at in zip(actions, fixed, strict=True))),
+                              self.task.durative)
+        if not self.config.validate:
+            self.best = (found, None)
+            return True
+        report = self._validate(found)
+        if report.valid:
+            found = dataclasses.replace(found, events=tuple(report.events))
+            self.best = (found, report)
+            return True
+        self.stats.rejected_reasons.append(report.reason)
+        return False
 
     def _accept(self, outcome: SearchOutcome) -> bool:
         """A goal node counts only if the validator agrees (else: searched on, counted)."""
@@ -263,9 +355,15 @@ class _Planning:
             return self._validate(found)
 
         t = time.perf_counter()
-        best, report = improve(self.ct, self.kernel, self.config.search(), self.limits, first,
-                               self.stats, lambda outcome: extract_plan(self.ct, outcome), check,
-                               heuristic=self.config.heuristic)
+        winner = self.winner
+
+        def heuristic(ct: CompiledTask, hc: HeuristicConfig, active: Any) -> Heuristic:
+            return self._attempt(dataclasses.replace(winner, damage=hc.damage_cost),
+                                 hc.time_weight)[0]
+
+        best, report = improve(self.ct, self.kernel, self._attempt(winner)[1], self.limits,
+                               first, self.stats, lambda outcome: extract_plan(self.ct, outcome),
+                               check, heuristic=heuristic)
         self.stats.add(self.kernel.counters)
         self.stats.improve_s = time.perf_counter() - t - (self.stats.validate_s - validate_before)
         self.stats.first_makespan, self.stats.first_length = first.makespan, len(first.actions)

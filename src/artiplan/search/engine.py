@@ -28,10 +28,12 @@ from collections.abc import Callable
 from dataclasses import dataclass, field
 
 from artiplan.errors import InvalidPlanError
+from artiplan.pddl.task import Atom
 from artiplan.search.heuristic import Evaluation, Heuristic
 from artiplan.search.waits import Waits, ceil_grid, grid_after
 from artiplan.semantics.compiled import CompiledTask, Operator
 from artiplan.semantics.kernel import EventLog, Kernel, Values
+from artiplan.semantics.walks import conjuncts
 from artiplan.tolerances import VAL_EVENT_WINDOW
 
 
@@ -75,12 +77,19 @@ class WaitBefore:
 
 
 @dataclass(frozen=True, slots=True)
+class WaitDelta:
+    """Wait until the next multiple of the search's ``delta`` [s]: a free choice of time that
+    no condition marks (when to brake so that a car stops in a window)."""
+
+
+@dataclass(frozen=True, slots=True)
 class Start:
     """How the initial node is reached."""
 
 
-Op = Apply | WaitNext | WaitGroup | WaitGoal | WaitFor | WaitBefore | Start
-WAIT_NEXT, WAIT_GOAL, WAIT_BEFORE, START = WaitNext(), WaitGoal(), WaitBefore(), Start()
+Op = Apply | WaitNext | WaitGroup | WaitGoal | WaitFor | WaitBefore | WaitDelta | Start
+WAIT_NEXT, WAIT_GOAL, WAIT_BEFORE, WAIT_DELTA, START = (WaitNext(), WaitGoal(), WaitBefore(),
+                                                       WaitDelta(), Start())
 
 
 @dataclass(frozen=True)
@@ -99,6 +108,10 @@ class SearchConfig:
             then loses the processes the action starts: benchmarks/results/semantics.md).
             An action due sooner after an event waits; one that an event would follow too
             soon is not applied. 0 turns the rule off.
+        delta: Step [s] of the free waits (:class:`WaitDelta`); None: waits stop only where
+            a condition may change, or just before.
+        before_events: :class:`WaitBefore` also stops ``event_gap`` before the next event
+            (the last moment to act before a tank runs dry).
     """
 
     epsilon: float = 0.001
@@ -107,6 +120,11 @@ class SearchConfig:
     boost: int = 1000
     max_wait_steps: int = 64
     event_gap: float = 1.5 * VAL_EVENT_WINDOW
+    delta: float | None = None
+    before_events: bool = False
+    g_weight: float = 0.0
+    wait_next: bool = True
+    max_repairs: int = 25
 
 
 @dataclass
@@ -136,6 +154,7 @@ class SearchOutcome:
     closing: tuple[float, int] | None  # (time, no-op action) that ends the plan, if any
     stats: dict[str, float] = field(default_factory=dict)
     exhausted: bool = False
+    repaired: bool = False  # a timing repair of a path gave the plan (the accept callback has it)
 
 
 class Search:
@@ -146,12 +165,20 @@ class Search:
         check_limits: Callable[[], None],
         accept: Callable[[SearchOutcome], bool] = lambda outcome: True,
         prune: Callable[[Node], bool] | None = None,
+        repair: Callable[[list[int], list[float]], bool] | None = None,
     ) -> None:
         self.ct, self.kernel, self.h, self.config = ct, kernel, heuristic, config
         self.waits = Waits(kernel)
         self.check_limits = check_limits
         self.accept = accept
         self.prune = prune  # nodes it returns True for are dropped (the improvement's bound)
+        # repair(actions, times) -> True when it made them a valid plan (timing repair)
+        self.repair = repair
+        goal_facts = {c.fact for c in conjuncts(ct.task.goal) if isinstance(c, Atom)}
+        self.achievers = [a.index for a in ct.actions
+                          if goal_facts & set(ct.task.actions[a.index].effect.add)]
+        self.tried: dict[tuple[int, ...], int] = {}  # repairs per action sequence
+        self.repaired = False
         self.noops = [a.index for a in ct.actions if a.noop]
         # the operators, built once (heap entries hold them)
         self.applies = [Apply(a.index) for a in ct.actions]
@@ -159,13 +186,16 @@ class Search:
         # comparisons that may close a window to act: action preconditions and invariants
         self.closers = frozenset().union(*(a.pre_comps for a in ct.actions),
                                          *(used for _, used in ct.invariants))
+        # comparisons whose change fires an event: acting just before one is a choice too
+        self.triggers: frozenset[int] = frozenset().union(
+            *(e.pre_comps for e in ct.events)) if config.before_events else frozenset()
         self.group_waits = [WaitGroup(g) for g in range(len(heuristic.groups))]
         self.nodes: list[Node] = []
         self.seen: set[tuple[int, tuple[int, ...], tuple[float | None, ...]]] = set()
         self.counter = itertools.count()
         self.stats: dict[str, float] = dict.fromkeys(
             ("expanded", "generated", "evaluated", "duplicates", "undo_pruned", "invalid",
-             "rejected", "pruned", "gap_pruned"), 0)
+             "rejected", "pruned", "gap_pruned", "repairs", "repaired"), 0)
 
     # ------------------------------------------------------------------ successors
     def _key(self, node: Node) -> tuple[int, tuple[int, ...], tuple[float | None, ...]]:
@@ -210,11 +240,18 @@ class Search:
                                   self.config.goal_margin, self.ct.goal_comps)
         elif isinstance(op, WaitBefore):
             res = self.waits.before(parent.time, parent.facts, parent.values, log,
-                                    parent.active, self.closers)
+                                    parent.active, self.closers, self.triggers,
+                                    self.config.event_gap)
+        elif isinstance(op, WaitDelta):
+            assert self.config.delta is not None
+            res = self.waits.delta(parent.time, parent.facts, parent.values, log,
+                                   parent.active, self.config.delta)
         elif isinstance(op, WaitFor):
             act = self.ct.actions[op.action]
             res = self.waits.until(parent.time, parent.facts, parent.values, act.pre,
                                    act.pre_comps, log, parent.active, self.config.max_wait_steps)
+            if res is None and self.repair is not None and op.action in self.achievers:
+                self._repair(parent, pi, op.action)
         else:
             if isinstance(op, WaitGroup):
                 g = self.h.groups[op.group]
@@ -330,6 +367,8 @@ class Search:
                     boost -= 1
                 pop_preferred = not pop_preferred
             node = initial if pi < 0 else self.successor(self.nodes[pi], pi, op)
+            if self.repaired:
+                return SearchOutcome(None, self.nodes, None, self.stats, repaired=True)
             if node is None:
                 continue
             if self.prune is not None and self.prune(node):
@@ -357,13 +396,51 @@ class Search:
             if ev.h < best_h:
                 best_h = ev.h
                 boost += self.config.boost
+            prio = ev.h + self.config.g_weight * node.n_actions
             moving = self.kernel.flow_of(active, node.values).moving
             for op2, pref in self._operators(node, ev, moving):
-                entry = (ev.h, next(self.counter), ni, op2)
+                entry = (prio, next(self.counter), ni, op2)
                 heapq.heappush(regular, entry)
                 if pref:
                     heapq.heappush(preferred, entry)
                 self.stats["generated"] += 1
+
+    def _repair(self, parent: Node, pi: int, a: int) -> None:
+        """Try a timing repair of the path to ``parent`` ended by goal achiever ``a``, whose
+        numbers the running processes bring close but miss (its wait found no time). The
+        achiever goes where its comparisons next change (the closest approach, typically);
+        each action sequence is tried twice at most, ``max_repairs`` in all."""
+        assert self.repair is not None
+        if self.stats["repairs"] >= self.config.max_repairs:
+            return
+        actions, times = self.path_actions(pi)
+        key = (*actions, a)
+        if self.tried.get(key, 0) >= 2:
+            return
+        self.tried[key] = self.tried.get(key, 0) + 1
+        flow = self.kernel.flow_of(parent.active, parent.values)
+        items = self.ct.comps.items
+        comps = tuple(sorted(c for c in self.ct.actions[a].pre_comps
+                             if items[c].fluents & flow.changing))
+        dt = self.kernel.next_change(parent.values, flow, comps) if comps else None
+        at = parent.time + (dt if dt is not None and math.isfinite(dt) else 0.0)
+        at = max(at, parent.ready, parent.last_event + self.config.event_gap)
+        self.stats["repairs"] += 1
+        if self.repair([*actions, a], [*times, at]):
+            self.stats["repaired"] += 1
+            self.repaired = True
+
+    def path_actions(self, ni: int) -> tuple[list[int], list[float]]:
+        """The actions on the path to node ``ni`` and their times [s], in order."""
+        actions: list[int] = []
+        times: list[float] = []
+        while ni >= 0:
+            node = self.nodes[ni]
+            if isinstance(node.op, Apply):
+                actions.append(node.op.action)
+                times.append(node.time)
+            ni = node.parent
+        return actions[::-1], times[::-1]
 
     def _operators(self, node: Node, ev: Evaluation, moving: bool) -> list[tuple[Op, bool]]:
         """Operators of a node, preferred first (their order breaks ties)."""
@@ -380,9 +457,13 @@ class Search:
             else:
                 ops.append((self.applies[i], True))
         if moving:
-            ops.append((WAIT_NEXT, False))
-            if self.closers and self.waits.closing(node.values, node.active, self.closers):
+            if self.config.wait_next:
+                ops.append((WAIT_NEXT, False))
+            if self.triggers or (self.closers and self.waits.closing(node.values, node.active,
+                                                                      self.closers)):
                 ops.append((WAIT_BEFORE, False))
+            if self.config.delta is not None:
+                ops.append((WAIT_DELTA, False))
         for a in self.ct.actions:
             if a.index in pref or a.noop or node.facts & a.forb or a.req & ~node.facts:
                 continue

@@ -93,20 +93,36 @@ class Waits:
         return any(items[c].fluents & flow.changing and self._holds(c, values) for c in comps)
 
     def before(self, t: float, facts: int, values: Values, log: EventLog,
-               active: tuple[int, ...], comps: frozenset[int]) -> Arrival | None:
-        """Until the last grid time before one of ``comps`` that holds now fails (None if
-        none will, or that time is within a grid step)."""
+               active: tuple[int, ...], comps: frozenset[int],
+               triggers: frozenset[int] = frozenset(), gap: float = 0.0) -> Arrival | None:
+        """Until the last grid time before one of ``comps`` that holds now fails, or ``gap``
+        [s] before one of ``triggers`` (an event's comparisons) changes (None if nothing
+        will, or that time is within a grid step)."""
         k = self.kernel
         flow = k.flow_of(active, values)
         items = k.ct.comps.items
         holding = tuple(sorted(c for c in comps if items[c].fluents & flow.changing
                                and self._holds(c, values)))
+        ends: list[float] = []
         dt = k.next_change(values, flow, holding) if holding else None
-        if dt is None or not math.isfinite(dt):
+        if dt is not None and math.isfinite(dt):
+            ends.append(floor_grid(t + dt, self.grid))
+        moving = tuple(sorted(c for c in triggers if items[c].fluents & flow.changing))
+        dt = k.next_change(values, flow, moving) if moving else None
+        if dt is not None and math.isfinite(dt):
+            ends.append(floor_grid(t + dt - gap, self.grid))
+        end = min(ends, default=math.inf)
+        if end == math.inf or end <= t + self.grid:
             return None
-        end = floor_grid(t + dt, self.grid)
-        if end <= t + self.grid:
+        return self._advance(t, facts, values, end, log, active)
+
+    def delta(self, t: float, facts: int, values: Values, log: EventLog,
+              active: tuple[int, ...], step: float) -> Arrival | None:
+        """Until the next multiple of ``step`` [s] at least a grid step after ``t`` (multiples
+        of one step, so that paths meet in the same states)."""
+        if not self.kernel.flow_of(active, values).moving:
             return None
+        end = ceil_grid((math.floor((t + self.grid) / step + 1e-9) + 1) * step, self.grid)
         return self._advance(t, facts, values, end, log, active)
 
     def until(self, t: float, facts: int, values: Values, cond: CondFn,

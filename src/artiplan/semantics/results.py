@@ -91,7 +91,9 @@ class PlanStats(Mapping[str, Any]):
     ``invalid`` (successors an event loop made impossible), ``rejected`` (goal nodes the
     validator refused), ``pruned`` (by the improvement's bound), ``gap_pruned`` (actions an
     event would follow too soon), ``events``, ``boundary_flows``, ``numeric_flows``,
-    ``attempts`` (restarts). Seconds: ``parse_s``, ``ground_s``, ``compile_s``, ``search_s``,
+    ``attempts`` (restarts), ``repairs`` / ``repaired`` (timing repairs tried / that gave the
+    plan), ``repair_evals`` (their trajectory simulations). Seconds: ``parse_s``, ``ground_s``,
+    ``compile_s``, ``search_s``,
     ``heuristic_s``, ``validate_s``, ``improve_s``, ``total_s``. The plan: ``plan_length``,
     ``makespan`` [s], ``validated``, ``margins``. The improvement phase: ``improve_*``,
     ``first_makespan``, ``first_length``.
@@ -110,6 +112,9 @@ class PlanStats(Mapping[str, Any]):
     boundary_flows: int = 0
     numeric_flows: int = 0
     attempts: int = 0
+    repairs: int = 0
+    repaired: int = 0
+    repair_evals: int = 0
     parse_s: float = 0.0
     ground_s: float = 0.0
     compile_s: float = 0.0
@@ -117,6 +122,7 @@ class PlanStats(Mapping[str, Any]):
     heuristic_s: float = 0.0
     validate_s: float = 0.0
     improve_s: float = 0.0
+    repair_s: float = 0.0
     total_s: float = 0.0
     plan_length: int | None = None
     makespan: float | None = None

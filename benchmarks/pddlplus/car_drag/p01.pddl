@@ -1,0 +1,5 @@
+(define (problem car-drag-01)
+  (:domain car-drag)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 1) (= (min-a) -1) (= (v-max) 8.8) (= (d-min) 25.48) (= (d-max) 35.48) (= (v-tol) 0.5) (= (deadline) 22.39) (= (drag) 0.02))
+  (:goal (and (stopped))))

@@ -1,0 +1,5 @@
+(define (problem car-drag-02)
+  (:domain car-drag)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 1) (= (min-a) -1) (= (v-max) 8.8) (= (d-min) 47.63) (= (d-max) 53.63) (= (v-tol) 0.3) (= (deadline) 26.46) (= (drag) 0.02))
+  (:goal (and (stopped))))

@@ -1,0 +1,5 @@
+(define (problem car-drag-03)
+  (:domain car-drag)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 2) (= (min-a) -2) (= (v-max) 12.5) (= (d-min) 78.63) (= (d-max) 82.63) (= (v-tol) 0.2) (= (deadline) 21.85) (= (drag) 0.02))
+  (:goal (and (stopped))))

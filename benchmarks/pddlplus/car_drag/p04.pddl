@@ -1,0 +1,5 @@
+(define (problem car-drag-04)
+  (:domain car-drag)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 2) (= (min-a) -2) (= (v-max) 14.4) (= (d-min) 118.71) (= (d-max) 121.71) (= (v-tol) 0.1) (= (deadline) 25.35) (= (drag) 0.015))
+  (:goal (and (stopped))))

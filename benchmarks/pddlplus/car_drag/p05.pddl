@@ -1,0 +1,5 @@
+(define (problem car-drag-05)
+  (:domain car-drag)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 3) (= (min-a) -3) (= (v-max) 17.7) (= (d-min) 199.11) (= (d-max) 201.11) (= (v-tol) 0.1) (= (deadline) 27.33) (= (drag) 0.015))
+  (:goal (and (stopped))))

@@ -1,0 +1,5 @@
+(define (problem car-drag-06)
+  (:domain car-drag)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 3) (= (min-a) -3) (= (v-max) 21.7) (= (d-min) 299.65) (= (d-max) 301.15) (= (v-tol) 0.05) (= (deadline) 31.09) (= (drag) 0.01))
+  (:goal (and (stopped))))

@@ -1,0 +1,5 @@
+(define (problem car-drag-07)
+  (:domain car-drag)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 4) (= (min-a) -4) (= (v-max) 25) (= (d-min) 499.82) (= (d-max) 500.82) (= (v-tol) 0.05) (= (deadline) 38.41) (= (drag) 0.01))
+  (:goal (and (stopped))))

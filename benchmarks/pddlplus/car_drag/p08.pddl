@@ -1,0 +1,5 @@
+(define (problem car-drag-08)
+  (:domain car-drag)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 4) (= (min-a) -4) (= (v-max) 28) (= (d-min) 800.45) (= (d-max) 801.05) (= (v-tol) 0.02) (= (deadline) 50.63) (= (drag) 0.008))
+  (:goal (and (stopped))))

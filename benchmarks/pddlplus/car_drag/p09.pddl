@@ -1,0 +1,5 @@
+(define (problem car-drag-09)
+  (:domain car-drag)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 5) (= (min-a) -5) (= (v-max) 36.1) (= (d-min) 1200.45) (= (d-max) 1200.85) (= (v-tol) 0.02) (= (deadline) 55.42) (= (drag) 0.006))
+  (:goal (and (stopped))))

@@ -1,0 +1,5 @@
+(define (problem car-drag-10)
+  (:domain car-drag)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 5) (= (min-a) -5) (= (v-max) 39.5) (= (d-min) 2000.48) (= (d-max) 2000.68) (= (v-tol) 0.01) (= (deadline) 77.54) (= (drag) 0.005))
+  (:goal (and (stopped))))

@@ -1,0 +1,5 @@
+(define (problem car-limit-01)
+  (:domain car-limit)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 1) (= (min-a) -1) (= (v-max) 18) (= (d-min) 25.31) (= (d-max) 35.31) (= (v-tol) 0.5) (= (deadline) 22.61) (= (v-limit) 12))
+  (:goal (and (stopped))))

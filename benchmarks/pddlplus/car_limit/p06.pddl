@@ -1,0 +1,5 @@
+(define (problem car-limit-06)
+  (:domain car-limit)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 3) (= (min-a) -3) (= (v-max) 36) (= (d-min) 299.53) (= (d-max) 301.03) (= (v-tol) 0.05) (= (deadline) 26.92) (= (v-limit) 24))
+  (:goal (and (stopped))))

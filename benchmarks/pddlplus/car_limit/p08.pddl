@@ -1,0 +1,5 @@
+(define (problem car-limit-08)
+  (:domain car-limit)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 4) (= (min-a) -4) (= (v-max) 48) (= (d-min) 799.98) (= (d-max) 800.58) (= (v-tol) 0.02) (= (deadline) 40.32) (= (v-limit) 32))
+  (:goal (and (stopped))))

@@ -1,0 +1,5 @@
+(define (problem car-limit-09)
+  (:domain car-limit)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 5) (= (min-a) -5) (= (v-max) 54) (= (d-min) 1200.49) (= (d-max) 1200.89) (= (v-tol) 0.02) (= (deadline) 47.65) (= (v-limit) 36))
+  (:goal (and (stopped))))

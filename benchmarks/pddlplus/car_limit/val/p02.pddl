@@ -1,0 +1,5 @@
+(define (problem car-limit-02)
+  (:domain car-limit-val)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 1) (= (min-a) -1) (= (v-max) 21) (= (d-min) 47.65) (= (d-max) 53.65) (= (v-tol) 0.3) (= (deadline) 26.3) (= (v-limit) 14))
+  (:goal (and (stopped))))

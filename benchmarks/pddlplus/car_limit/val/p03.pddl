@@ -1,0 +1,5 @@
+(define (problem car-limit-03)
+  (:domain car-limit-val)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 2) (= (min-a) -2) (= (v-max) 24) (= (d-min) 78.65) (= (d-max) 82.65) (= (v-tol) 0.2) (= (deadline) 20.88) (= (v-limit) 16))
+  (:goal (and (stopped))))

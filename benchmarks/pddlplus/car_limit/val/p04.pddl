@@ -1,0 +1,5 @@
+(define (problem car-limit-04)
+  (:domain car-limit-val)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 2) (= (min-a) -2) (= (v-max) 27) (= (d-min) 119.28) (= (d-max) 122.28) (= (v-tol) 0.1) (= (deadline) 23.95) (= (v-limit) 18))
+  (:goal (and (stopped))))

@@ -1,0 +1,5 @@
+(define (problem car-limit-05)
+  (:domain car-limit-val)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 3) (= (min-a) -3) (= (v-max) 30) (= (d-min) 199.25) (= (d-max) 201.25) (= (v-tol) 0.1) (= (deadline) 23.57) (= (v-limit) 20))
+  (:goal (and (stopped))))

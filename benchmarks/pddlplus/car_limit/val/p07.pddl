@@ -1,0 +1,5 @@
+(define (problem car-limit-07)
+  (:domain car-limit-val)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 4) (= (min-a) -4) (= (v-max) 42) (= (d-min) 499.72) (= (d-max) 500.72) (= (v-tol) 0.05) (= (deadline) 31.58) (= (v-limit) 28))
+  (:goal (and (stopped))))

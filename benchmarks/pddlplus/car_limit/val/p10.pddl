@@ -1,0 +1,5 @@
+(define (problem car-limit-10)
+  (:domain car-limit-val)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 5) (= (min-a) -5) (= (v-max) 60) (= (d-min) 2000.1) (= (d-max) 2000.3) (= (v-tol) 0.01) (= (deadline) 65.32) (= (v-limit) 40))
+  (:goal (and (stopped))))

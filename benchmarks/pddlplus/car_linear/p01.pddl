@@ -1,0 +1,5 @@
+(define (problem car-linear-01)
+  (:domain car-linear)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 1) (= (min-a) -1) (= (v-max) 12) (= (d-min) 25.46) (= (d-max) 35.46) (= (v-tol) 0.5) (= (deadline) 22.67))
+  (:goal (and (stopped))))

@@ -1,0 +1,5 @@
+(define (problem car-linear-02)
+  (:domain car-linear)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 1) (= (min-a) -1) (= (v-max) 14) (= (d-min) 47.55) (= (d-max) 53.55) (= (v-tol) 0.3) (= (deadline) 26.27))
+  (:goal (and (stopped))))

@@ -1,0 +1,5 @@
+(define (problem car-linear-03)
+  (:domain car-linear)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 2) (= (min-a) -2) (= (v-max) 16) (= (d-min) 78.84) (= (d-max) 82.84) (= (v-tol) 0.2) (= (deadline) 20.91))
+  (:goal (and (stopped))))

@@ -1,0 +1,5 @@
+(define (problem car-linear-04)
+  (:domain car-linear)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 2) (= (min-a) -2) (= (v-max) 18) (= (d-min) 118.97) (= (d-max) 121.97) (= (v-tol) 0.1) (= (deadline) 23.92))
+  (:goal (and (stopped))))

@@ -1,0 +1,5 @@
+(define (problem car-linear-05)
+  (:domain car-linear)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 3) (= (min-a) -3) (= (v-max) 20) (= (d-min) 199.51) (= (d-max) 201.51) (= (v-tol) 0.1) (= (deadline) 24.06))
+  (:goal (and (stopped))))

@@ -1,0 +1,5 @@
+(define (problem car-linear-06)
+  (:domain car-linear)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 3) (= (min-a) -3) (= (v-max) 24) (= (d-min) 299.82) (= (d-max) 301.32) (= (v-tol) 0.05) (= (deadline) 27.51))
+  (:goal (and (stopped))))

@@ -1,0 +1,5 @@
+(define (problem car-linear-07)
+  (:domain car-linear)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 4) (= (min-a) -4) (= (v-max) 28) (= (d-min) 499.75) (= (d-max) 500.75) (= (v-tol) 0.05) (= (deadline) 32.76))
+  (:goal (and (stopped))))

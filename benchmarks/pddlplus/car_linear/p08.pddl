@@ -1,0 +1,5 @@
+(define (problem car-linear-08)
+  (:domain car-linear)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 4) (= (min-a) -4) (= (v-max) 32) (= (d-min) 800.21) (= (d-max) 800.81) (= (v-tol) 0.02) (= (deadline) 42.06))
+  (:goal (and (stopped))))

@@ -1,0 +1,5 @@
+(define (problem car-linear-09)
+  (:domain car-linear)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 5) (= (min-a) -5) (= (v-max) 36) (= (d-min) 1200.4) (= (d-max) 1200.8) (= (v-tol) 0.02) (= (deadline) 50.14))
+  (:goal (and (stopped))))

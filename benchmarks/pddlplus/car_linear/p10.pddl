@@ -1,0 +1,5 @@
+(define (problem car-linear-10)
+  (:domain car-linear)
+  (:init (running)
+    (= (d) 0) (= (v) 0) (= (a) 0) (= (clock) 0) (= (max-a) 5) (= (min-a) -5) (= (v-max) 40) (= (d-min) 2000.63) (= (d-max) 2000.83) (= (v-tol) 0.01) (= (deadline) 69.13))
+  (:goal (and (stopped))))

@@ -1,0 +1,11 @@
+(define (problem generator-04)
+  (:domain generator)
+  (:objects gen - generator t1 t2 t3 t4 - tank)
+  (:init
+    (= (fuel gen) 30) (= (capacity gen) 31)
+    (= (gen-duration) 197) (= (refuel-rate) 2)
+    (= (tank-fuel t1) 30) (available t1)
+    (= (tank-fuel t2) 52) (available t2)
+    (= (tank-fuel t3) 52) (available t3)
+    (= (tank-fuel t4) 34) (available t4))
+  (:goal (and (generator-ran))))

@@ -1,0 +1,11 @@
+(define (problem generator-07)
+  (:domain generator)
+  (:objects gen - generator t1 t2 t3 t4 - tank)
+  (:init
+    (= (fuel gen) 14) (= (capacity gen) 15)
+    (= (gen-duration) 149) (= (refuel-rate) 2)
+    (= (tank-fuel t1) 34) (available t1)
+    (= (tank-fuel t2) 34) (available t2)
+    (= (tank-fuel t3) 22) (available t3)
+    (= (tank-fuel t4) 46) (available t4))
+  (:goal (and (generator-ran))))

@@ -1,0 +1,13 @@
+(define (problem generator-08)
+  (:domain generator)
+  (:objects gen - generator t1 t2 t3 t4 t5 t6 - tank)
+  (:init
+    (= (fuel gen) 12) (= (capacity gen) 13)
+    (= (gen-duration) 279) (= (refuel-rate) 2)
+    (= (tank-fuel t1) 46) (available t1)
+    (= (tank-fuel t2) 58) (available t2)
+    (= (tank-fuel t3) 48) (available t3)
+    (= (tank-fuel t4) 22) (available t4)
+    (= (tank-fuel t5) 40) (available t5)
+    (= (tank-fuel t6) 54) (available t6))
+  (:goal (and (generator-ran))))

@@ -1,0 +1,9 @@
+(define (problem generator-pplus-01)
+  (:domain generator-pplus)
+  (:objects gen - generator t1 - tank)
+  (:init
+    (= (fuel gen) 25) (= (capacity gen) 26)
+    (= (gen-duration) 54) (= (refuel-rate) 2)
+    (= (tank-fuel t1) 30) (available t1)
+    (idle gen) (= (gen-time gen) 0))
+  (:goal (and (generator-ran))))

@@ -1,0 +1,11 @@
+(define (problem generator-pplus-03)
+  (:domain generator-pplus)
+  (:objects gen - generator t1 t2 t3 - tank)
+  (:init
+    (= (fuel gen) 37) (= (capacity gen) 38)
+    (= (gen-duration) 168) (= (refuel-rate) 2)
+    (= (tank-fuel t1) 50) (available t1)
+    (= (tank-fuel t2) 32) (available t2)
+    (= (tank-fuel t3) 50) (available t3)
+    (idle gen) (= (gen-time gen) 0))
+  (:goal (and (generator-ran))))

@@ -1,0 +1,10 @@
+(define (problem generator-pplus-05)
+  (:domain generator-pplus)
+  (:objects gen - generator t1 t2 - tank)
+  (:init
+    (= (fuel gen) 13) (= (capacity gen) 14)
+    (= (gen-duration) 74) (= (refuel-rate) 2)
+    (= (tank-fuel t1) 20) (available t1)
+    (= (tank-fuel t2) 42) (available t2)
+    (idle gen) (= (gen-time gen) 0))
+  (:goal (and (generator-ran))))

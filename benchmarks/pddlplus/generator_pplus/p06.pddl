@@ -1,0 +1,11 @@
+(define (problem generator-pplus-06)
+  (:domain generator-pplus)
+  (:objects gen - generator t1 t2 t3 - tank)
+  (:init
+    (= (fuel gen) 15) (= (capacity gen) 16)
+    (= (gen-duration) 112) (= (refuel-rate) 2)
+    (= (tank-fuel t1) 46) (available t1)
+    (= (tank-fuel t2) 24) (available t2)
+    (= (tank-fuel t3) 28) (available t3)
+    (idle gen) (= (gen-time gen) 0))
+  (:goal (and (generator-ran))))

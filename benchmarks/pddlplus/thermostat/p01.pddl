@@ -1,0 +1,10 @@
+(define (problem thermostat-01)
+  (:domain thermostat)
+  (:objects r1 - room)
+  (:init
+    (on-shift) (= (clock) 0)
+    (= (horizon) 30)
+    (= (power-used) 0) (= (max-power) 1)
+    (in-building r1) (= (temp r1) 21.36) (= (heat-rate r1) 0.486) (= (loss-rate r1) 0.134)
+    (= (t-low r1) 19.5) (= (t-high r1) 23.5) (= (t-goal r1) 19.7))
+  (:goal (and (shift-done) (>= (temp r1) (t-goal r1)))))

@@ -1,0 +1,10 @@
+(define (problem thermostat-02)
+  (:domain thermostat)
+  (:objects r1 - room)
+  (:init
+    (on-shift) (= (clock) 0)
+    (= (horizon) 60)
+    (= (power-used) 0) (= (max-power) 1)
+    (in-building r1) (= (temp r1) 20.42) (= (heat-rate r1) 0.426) (= (loss-rate r1) 0.154)
+    (= (t-low r1) 19) (= (t-high r1) 22) (= (t-goal r1) 19.15))
+  (:goal (and (shift-done) (>= (temp r1) (t-goal r1)))))

@@ -1,0 +1,12 @@
+(define (problem thermostat-03)
+  (:domain thermostat)
+  (:objects r1 r2 - room)
+  (:init
+    (on-shift) (= (clock) 0)
+    (= (horizon) 60)
+    (= (power-used) 0) (= (max-power) 2)
+    (in-building r1) (= (temp r1) 20.78) (= (heat-rate r1) 0.291) (= (loss-rate r1) 0.099)
+    (= (t-low r1) 19.2) (= (t-high r1) 22.2) (= (t-goal r1) 19.35)
+    (in-building r2) (= (temp r2) 22.1) (= (heat-rate r2) 0.462) (= (loss-rate r2) 0.153)
+    (= (t-low r2) 20.7) (= (t-high r2) 23.7) (= (t-goal r2) 20.85))
+  (:goal (and (shift-done) (>= (temp r1) (t-goal r1)) (>= (temp r2) (t-goal r2)))))

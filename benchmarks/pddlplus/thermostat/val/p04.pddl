@@ -1,0 +1,12 @@
+(define (problem thermostat-04)
+  (:domain thermostat-val)
+  (:objects r1 r2 - room)
+  (:init
+    (on-shift) (= (clock) 0)
+    (= (horizon) 90)
+    (= (power-used) 0) (= (max-power) 1)
+    (in-building r1) (= (temp r1) 20.22) (= (heat-rate r1) 0.404) (= (loss-rate r1) 0.072)
+    (= (t-low r1) 19.3) (= (t-high r1) 21.3) (= (t-goal r1) 19.4)
+    (in-building r2) (= (temp r2) 20.09) (= (heat-rate r2) 0.432) (= (loss-rate r2) 0.197)
+    (= (t-low r2) 18.9) (= (t-high r2) 20.9) (= (t-goal r2) 19))
+  (:goal (and (shift-done) (>= (temp r1) (t-goal r1)) (>= (temp r2) (t-goal r2)))))

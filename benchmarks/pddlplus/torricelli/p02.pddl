@@ -1,0 +1,13 @@
+(define (problem generator-torricelli-02)
+  (:domain generator-torricelli)
+  (:objects gen - generator t1 t2 - tank)
+  (:init
+    (= (fuel gen) 54) (= (capacity gen) 55)
+    (= (gen-duration) 125)
+    (idle gen) (= (gen-time gen) 0)
+    (= (reserve) 1)
+    (= (flow t1) 1.14) (available t1)
+    (= (flow t2) 1.3) (available t2)
+    (= (tank-fuel t1) 25)
+    (= (tank-fuel t2) 49))
+  (:goal (and (generator-ran))))

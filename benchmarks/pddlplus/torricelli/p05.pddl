@@ -1,0 +1,13 @@
+(define (problem generator-torricelli-05)
+  (:domain generator-torricelli)
+  (:objects gen - generator t1 t2 - tank)
+  (:init
+    (= (fuel gen) 17) (= (capacity gen) 18)
+    (= (gen-duration) 99)
+    (idle gen) (= (gen-time gen) 0)
+    (= (reserve) 1)
+    (= (flow t1) 1.43) (available t1)
+    (= (flow t2) 1.96) (available t2)
+    (= (tank-fuel t1) 49)
+    (= (tank-fuel t2) 36))
+  (:goal (and (generator-ran))))

@@ -1,0 +1,11 @@
+(define (problem generator-torricelli-01)
+  (:domain generator-torricelli-val)
+  (:objects gen - generator t1 - tank)
+  (:init
+    (= (fuel gen) 53) (= (capacity gen) 54)
+    (= (gen-duration) 100)
+    (idle gen) (= (gen-time gen) 0)
+    (= (reserve-root) 1)
+    (= (flow t1) 1.84) (available t1)
+    (= (tank-root t1) 7))
+  (:goal (and (generator-ran))))

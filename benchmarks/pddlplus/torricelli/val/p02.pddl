@@ -1,0 +1,13 @@
+(define (problem generator-torricelli-02)
+  (:domain generator-torricelli-val)
+  (:objects gen - generator t1 t2 - tank)
+  (:init
+    (= (fuel gen) 54) (= (capacity gen) 55)
+    (= (gen-duration) 125)
+    (idle gen) (= (gen-time gen) 0)
+    (= (reserve-root) 1)
+    (= (flow t1) 1.14) (available t1)
+    (= (flow t2) 1.3) (available t2)
+    (= (tank-root t1) 5)
+    (= (tank-root t2) 7))
+  (:goal (and (generator-ran))))

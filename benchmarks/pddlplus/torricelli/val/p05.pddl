@@ -1,0 +1,13 @@
+(define (problem generator-torricelli-05)
+  (:domain generator-torricelli-val)
+  (:objects gen - generator t1 t2 - tank)
+  (:init
+    (= (fuel gen) 17) (= (capacity gen) 18)
+    (= (gen-duration) 99)
+    (idle gen) (= (gen-time gen) 0)
+    (= (reserve-root) 1)
+    (= (flow t1) 1.43) (available t1)
+    (= (flow t2) 1.96) (available t2)
+    (= (tank-root t1) 7)
+    (= (tank-root t2) 6))
+  (:goal (and (generator-ran))))
