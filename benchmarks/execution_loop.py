@@ -2,7 +2,7 @@
 
 Usage: .venv/bin/python benchmarks/execution_loop.py [--tasks 20] [--links 4] [--model ucm]
        [--preset stiff] [--hands virtual] [--intervene] [--plan-tol 1.5]
-       [--approach 1.0] [--start 1] -o FILE.jsonl
+       [--approach 1.0] [--start 1] [--logs DIR] -o FILE.jsonl
 ``--approach S`` (Baxter): the arms move to each grasp in S simulated seconds; the reach time is
 then measured on the simulated Baxter (``measure_reach``) and used as the encodings'
 ``reach_time`` (unless ``--reach-time`` is given).
@@ -41,6 +41,8 @@ def main() -> None:
     ap.add_argument("--carry", choices=("rigid", "projected"), default="rigid",
                     help="the encodings' carry rule (EncodingOptions.carry)")
     ap.add_argument("--start", type=int, default=1, help="first task index")
+    ap.add_argument("--logs", type=Path, default=None,
+                    help="also write each run's full log here as task-K.json (for diagnosis)")
     ap.add_argument("-o", "--out", type=Path, required=True)
     args = ap.parse_args()
 
@@ -90,6 +92,9 @@ def main() -> None:
                    "approach_s": args.approach, "reach_time": reach,
                    "compensate": not args.no_compensate, "carry": args.carry}
             rows.append(row)
+            if args.logs is not None:
+                args.logs.mkdir(parents=True, exist_ok=True)
+                log.save(args.logs / f"task-{k}.json")
             fh.write(json.dumps(row) + "\n")
             print(json.dumps(row), flush=True)
     lat = [x for r in rows for x in r["latency_wall_s"]]
