@@ -134,6 +134,50 @@ def test_transfer_is_planned_around_what_the_straight_motion_hits() -> None:
     assert hands.checker.stats and all(s.ok for s in hands.checker.stats)
 
 
+@pytest.mark.slow
+def test_both_arms_move_one_by_one_when_the_14d_query_finds_nothing(monkeypatch) -> None:
+    """The 14-D transfer made to find nothing: each arm is planned alone (7-D, the other arm
+    where it stands), one after the other; every segment moves one arm, and the simulated
+    arms keep clear on the way."""
+    import artiplan.world.approach as approach
+
+    real = approach.plan_path
+
+    def no_14d(chk, query, start, goal, bounds, time_s=2.0):  # type: ignore[no-untyped-def]
+        return None if len(start) == 14 else real(chk, query, start, goal, bounds, time_s)
+
+    monkeypatch.setattr(approach, "plan_path", no_14d)
+    world = make_world(ArticulatedObject(4), CONF, hands="baxter", approach_s=1.0)
+    hands = world.hands
+    paths: list[list[np.ndarray]] = []
+    one_by_one = hands._one_by_one
+
+    def recorded(*args, **kwargs):  # type: ignore[no-untyped-def]
+        out = one_by_one(*args, **kwargs)
+        paths.append(out)
+        return out
+
+    monkeypatch.setattr(hands, "_one_by_one", recorded)
+    hold, rot = hands.assign("L2", "L3")
+    chk = hands.checker
+    worst = np.inf
+
+    def advance(dt: float) -> None:
+        nonlocal worst
+        world.step(dt)
+        chk.sync(world.data.qpos)
+        q = {h: world.data.qpos[hands._q[h]] for h in hands.names}
+        worst = min(worst, chk.clearance(q, Query(hands.names, hands.grip_pairs(
+            {hold: "L2", rot: "L3"})))[0])
+
+    hands.approach([(hold, "L2"), (rot, "L3")], advance)
+    assert paths and paths[0] is not None and len(paths[0]) >= 3
+    for a, b in zip(paths[0], paths[0][1:], strict=False):
+        moved = [not np.allclose(a[7 * i : 7 * i + 7], b[7 * i : 7 * i + 7]) for i in (0, 1)]
+        assert moved.count(True) == 1
+    assert worst > 0.0 and not hands.contacts.events
+
+
 def test_no_collision_free_pair_makes_the_action_not_executable(monkeypatch) -> None:
     """If every configuration collided (the checker made to say so), no pair is chosen: the
     action is refused with the reason, and nothing is held."""

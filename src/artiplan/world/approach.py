@@ -9,7 +9,8 @@ An approach has three motions, each planned and checked before the arms move:
    each hand's approach axis from its grasp, planned with OMPL's RRT-Connect against the
    torso, the other arm, the table, pedestal, fixture and every link
    (:func:`artiplan.world.motion.plan_path`), keeping
-   :data:`~artiplan.world.motion.TRANSFER_CLEARANCE_M`;
+   :data:`~artiplan.world.motion.TRANSFER_CLEARANCE_M`; when the 14-D query finds nothing,
+   one arm moves and then the other (each 7-D, the other arm an obstacle where it stands);
 3. the final straight legs in along the approach axes (IK waypoints, checked when the pair was
    chosen, every link but the one each gripper closes on).
 
@@ -55,6 +56,8 @@ RETREAT_S = 0.5
 APPROACH_RETREAT_S = 0.0
 #: Share of ``approach_s`` the transfer takes at least (kept for the old name).
 PREGRASP_SHARE = 0.75
+#: Wall time [s] of each one-arm query when both arms' transfer is planned one by one.
+ONE_ARM_TIME_S = 1.0
 
 
 class ApproachMotion(PairChoice):
@@ -155,17 +158,47 @@ class ApproachMotion(PairChoice):
         start = np.concatenate([starts[h] for h in moving])
         goal = np.concatenate([goals[h] for h in moving])
         # A leg out of reach ends the transfer on the grasp itself: its gripper meets its link.
-        grips = self.grip_pairs({h: cands[h].link for h in legs
-                                 if np.array_equal(legs[h][0], legs[h][-1])})
+        gripping = {h: cands[h].link for h in legs if np.array_equal(legs[h][0], legs[h][-1])}
         # Not the links the grippers have just let go of: the ramp lets them out of those
         # near the start only (afterwards the physics collides with them again).
-        query = self._ramp(Query(moving, grips), start, goal)
+        query = self._ramp(Query(moving, self.grip_pairs(gripping)), start, goal)
         path = plan_path(chk, query, start, goal, self._bounds(moving))
+        if path is None and len(moving) == 2:
+            path = self._one_by_one(moving, starts, goals, gripping)
         if path is None:
             raise NotExecutableError(
                 "no collision-free arm motion found to the pre-grasp poses of "
                 + ", ".join(f"{h} on {cands[h].link}" for h in legs))
         return TimedPath(path, self.limits)
+
+    def _one_by_one(
+        self, moving: tuple[str, ...], starts: dict[str, Vec], goals: dict[str, Vec],
+        gripping: dict[str, str],
+    ) -> list[Vec] | None:
+        """Both arms' transfer as one arm's motion and then the other's, each planned in 7-D
+        with the other arm standing still where it is (an obstacle), in either order; the
+        stacked waypoints (one arm still on each segment), or None. The fallback when the
+        14-D query finds nothing in its time: RRT-Connect in 14-D can miss a passage that
+        each arm alone finds at once (an arm that must wait for the other to clear)."""
+        chk = self.checker
+        for order in (moving, moving[::-1]):
+            q = {h: starts[h].copy() for h in moving}
+            path = [np.concatenate([q[h] for h in moving])]
+            for h in order:
+                chk.sync(self.data.qpos)
+                chk.set_arms(q)
+                grips = self.grip_pairs({h: gripping[h]} if h in gripping else {})
+                query = self._ramp(Query((h,), grips), q[h], goals[h])
+                leg = plan_path(chk, query, q[h], goals[h], self._bounds((h,)),
+                                ONE_ARM_TIME_S)
+                if leg is None:
+                    break
+                for wp in leg[1:]:
+                    q[h] = wp
+                    path.append(np.concatenate([q[a] for a in moving]))
+            else:
+                return path
+        return None
 
     def _retarget(
         self, moving: tuple[str, ...], cands: dict[str, Candidate], final: TimedPath

@@ -76,17 +76,21 @@ class Query:
 
 @dataclass
 class MotionStats:
-    """One planned motion: wall time [s], dimension, waypoints, success."""
+    """One planned motion: wall time [s], dimension, waypoints, success, and why it failed
+    (``endpoint``: the start or goal keeps no clearance; ``time``: OMPL found no path that
+    passes the fine check in its time; empty when it succeeded)."""
 
     wall_s: float
     dims: int
     waypoints: int
     ok: bool
     checks: int
+    why: str = ""
 
     def to_dict(self) -> dict[str, object]:
         return {"wall_s": round(self.wall_s, 4), "dims": self.dims,
-                "waypoints": self.waypoints, "ok": self.ok, "checks": self.checks}
+                "waypoints": self.waypoints, "ok": self.ok, "checks": self.checks,
+                "why": self.why}
 
 
 @dataclass
@@ -236,15 +240,20 @@ def plan_path(
     size are appended to ``checker.stats``."""
     t0, checks0 = time.perf_counter(), checker.checks
     path: list[Vec] | None = None
+    why = ""
     if checker.segment_valid(start, goal, query):  # the straight segment is free: done
         path = [start, goal]
     elif _endpoint_ok(checker, query, start) and _endpoint_ok(checker, query, goal):
         path = _ompl(checker, query, start, goal, bounds, time_s)
         if path is not None:
             path = shortcut(checker, query, path)
+        else:
+            why = "time"
+    else:
+        why = "endpoint"
     checker.stats.append(MotionStats(time.perf_counter() - t0, len(start),
                                      len(path) if path else 0, path is not None,
-                                     checker.checks - checks0))
+                                     checker.checks - checks0, why))
     return path
 
 
@@ -283,8 +292,10 @@ def _ompl(
     checker: ArmChecker, query: Query, start: Vec, goal: Vec, bounds: tuple[Vec, Vec],
     time_s: float,
 ) -> list[Vec] | None:
-    """RRT-Connect, :data:`ATTEMPTS` times (each simplified), the fastest path kept; the
-    attempts stop early once ``time_s`` is used up and a path exists."""
+    """RRT-Connect until :data:`ATTEMPTS` paths are found (each simplified and checked at
+    the fine step), the fastest kept; the attempts stop once ``time_s`` is used up (or,
+    with a path, one is near enough the straight segment's cost). A path that fails the
+    fine check does not use up an attempt: RRT-Connect starts again while time is left."""
     from ompl import base as ob
     from ompl import geometric as og
     from ompl import util as ou
@@ -316,13 +327,16 @@ def _ompl(
     setup.setPlanner(planner)
     best: list[Vec] | None = None
     t_end = time.perf_counter() + time_s
-    for _ in range(ATTEMPTS):
+    found = 0
+    while found < ATTEMPTS:
         left = t_end - time.perf_counter()
         if left <= 0:
             break
         setup.clear()
         solved = setup.solve(left if best is None else min(left, ATTEMPT_S))
         if not bool(solved) or not setup.haveExactSolutionPath():
+            if best is not None:
+                found += 1  # a later attempt found nothing in its time: enough
             continue
         setup.simplifySolution(SIMPLIFY_TIME_S)
         p = setup.getSolutionPath()
@@ -330,6 +344,7 @@ def _ompl(
         path[0], path[-1] = start.copy(), goal.copy()
         if not checker.path_valid(path, query):
             continue
+        found += 1
         if best is None or path_cost(path) < path_cost(best):
             best = path
         if path_cost(best) <= GOOD_ENOUGH * path_cost([start, goal]):
