@@ -12,6 +12,7 @@ from artiplan.execution import LoopConfig, run_loop
 from artiplan.execution.dispatch import Rotate
 from artiplan.execution.regrasp import MAX_LOST_DEG, Resume, behind_deg
 from artiplan.model import ArticulatedObject, Configuration
+from artiplan.model.angles import signed_delta_deg
 from artiplan.semantics import TimedAction
 
 
@@ -61,3 +62,30 @@ def test_resume_remaining_and_lost() -> None:
     level = Configuration((0.0, 0.0, 30.0), (0.0, 90.0, 90.0))
     assert abs(behind_deg(spin, level, Configuration((0.0, 0.0, 20.0), (0.0, 90.0, 90.0)), 3)
                - 10.0) < 1e-9
+
+
+def test_a_fade_predicts_a_link_where_it_was_seen_until_the_turn_catches_up() -> None:
+    from artiplan.backends import get_planner
+    from artiplan.encoding import domain_pddl, make_goal
+    from artiplan.encoding.suite import make_task
+    from artiplan.execution.predict import Prediction
+    from artiplan.execution.problem import build_problem
+
+    obj = ArticulatedObject(4)
+    task = make_task(4, 1, seed=7)
+    enc = EncodingOptions("ucm", speed_g=0.948)
+    goal = make_goal(obj, task.target, "window", 1, planes=enc.planes, tolerance=1.5)
+    result = get_planner("artiplan").plan(
+        domain_pddl(obj, enc), build_problem(obj, task.initial, task.target, enc, goal),
+        time_limit=60)
+    assert result.trajectory is not None
+    pred = Prediction(obj, result.trajectory, 2.0, task.initial)
+    plain = [pred.at(t) for t in (3.0, 4.0, 5.0, 6.0)]
+    pred.fade({3: -8.0, 4: -8.0}, "z-axis", 3.0, 5.0)
+    faded = [pred.at(t) for t in (3.0, 4.0, 5.0, 6.0)]
+    for (a, b), off in zip(zip(plain, faded, strict=True), (-8.0, -4.0, 0.0, 0.0), strict=True):
+        for i in (3, 4):
+            assert abs(signed_delta_deg(a.angle(i, "z-axis"), b.angle(i, "z-axis")) - off) < 1e-9
+        assert a.theta == b.theta and a.gamma[:2] == b.gamma[:2]
+    pred.fade({2: 1.0}, "xy-axes", 6.0, 7.0)  # the expired fade is dropped
+    assert [f.index for f in pred.fades] == [2]

@@ -28,7 +28,8 @@ from artiplan.execution.predict import Prediction
 from artiplan.execution.problem import build_problem, canonical
 from artiplan.execution.regrasp import Resume, behind_deg, resume_after
 from artiplan.execution.runlog import RunLog, conf_dict
-from artiplan.model import Configuration
+from artiplan.model import HORIZONTAL_PLANE, Configuration
+from artiplan.model.angles import signed_delta_deg
 from artiplan.semantics import Plan
 from artiplan.semantics.plan_io import format_plan
 from artiplan.semantics.results import PlanStatus
@@ -385,10 +386,17 @@ class ClosedLoop:
         """Shift the plan's clock so the turn ``step`` starting now ends where the plan says
         on its plane (:mod:`artiplan.execution.regrasp`); returns how far [deg] the link was
         behind the prediction (negative: ahead)."""
-        predicted = pred.at(self.world.time)
+        now = self.world.time
+        predicted = pred.at(now)
         seen = self.world.perceive(reference=predicted).configuration
-        behind = behind_deg(step, predicted, seen, self.obj.index(step.turn))
+        j = self.obj.index(step.turn)
+        behind = behind_deg(step, predicted, seen, j)
         pred.t0 += behind / speed
+        if behind > 0.0:  # until the link has caught the plan up, predict it where it is
+            off = signed_delta_deg(pred.at(now).angle(j, step.plane), seen.angle(j, step.plane))
+            off = max(-behind, min(behind, off))  # no more than the catch-up explains
+            rigid = range(j, self.obj.n_links + 1) if step.plane == HORIZONTAL_PLANE else (j,)
+            pred.fade(dict.fromkeys(rigid, off), step.plane, now, now + behind / speed)
         return behind
 
     def _speed(self, step: Rotate) -> float:
