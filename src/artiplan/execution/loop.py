@@ -26,10 +26,10 @@ from artiplan.execution.dispatch import ActionFailed, Rotate, Step, dispatch, pl
 from artiplan.execution.monitor import Monitor, goal_errors
 from artiplan.execution.predict import Prediction
 from artiplan.execution.problem import build_problem, canonical
-from artiplan.execution.regrasp import Resume, behind_deg, resume_after
+from artiplan.execution.refusals import Refusals, describe
+from artiplan.execution.regrasp import Resume, align, resume_after
 from artiplan.execution.runlog import RunLog, conf_dict
-from artiplan.model import HORIZONTAL_PLANE, Configuration
-from artiplan.model.angles import signed_delta_deg
+from artiplan.model import Configuration
 from artiplan.semantics import Plan
 from artiplan.semantics.plan_io import format_plan
 from artiplan.semantics.results import PlanStatus
@@ -40,9 +40,6 @@ if TYPE_CHECKING:
 Progress = Callable[[str], None]
 #: Wall time [s] after which a long execution prints a line even when nothing happened.
 HEARTBEAT_S = 10.0
-#: At most this many plans a run whose first rotation the world refuses before anything of
-#: them moved are planned again without spending the re-plan budget (see ClosedLoop.run).
-MAX_REFUSALS = 12
 #: Called with (world, kind, label) after every percept (kind ``monitor``), action (``action``,
 #: its signature), intervention and the final check; e.g. to record camera frames.
 Observer = Callable[["World", str, str], None]
@@ -83,16 +80,8 @@ class ClosedLoop:
         self.lead = (enc.reach_time or 0.0) if approaching and config.compensate_approach else 0.0
         self.pending = sorted(config.interventions, key=lambda i: i.time)
         self.replans = 0
-        #: Rotations (hold, rotate, plane, increase|decrease) the world refused since their
-        #: pair last moved: the next plans do not start them before it has (a turn of the
-        #: rotated link or of one base-ward of it; EncodingOptions.refusals).
-        self.refused: frozenset[tuple[str, str, str, str]] = frozenset()
-        #: Whether the plan being executed has moved anything yet; whether it was found only
-        #: by ignoring the refusals; plans re-made after a refusal, free of the budget.
-        self._moved = False
-        self._relaxed = False
-        self._free = False
-        self.refusals = 0
+        #: Rotations the world refused, planned around (:mod:`artiplan.execution.refusals`).
+        self.refusals = Refusals()
         self.planner = get_planner(self.config.planner)
         #: Links carried by the vertical-plane rotation in progress (see Monitor.check).
         self.carried: frozenset[str] = frozenset()
@@ -120,7 +109,7 @@ class ClosedLoop:
             prediction = self._plan(reason, counted)
             if prediction is None:
                 break
-            self._free = False
+            self.refusals.free = False
             outcome = self._execute(prediction)
             if outcome is None:  # plan finished: check the goal at the final happening
                 if self._final_check() or not self._may_replan():
@@ -134,9 +123,9 @@ class ClosedLoop:
             # A plan whose first rotation the world refused before anything moved was never
             # executed: planning again without it is part of planning (the motion planner
             # answering the task planner), not a re-plan after a failed execution.
-            counted = not self._free
+            counted = not self.refusals.free
             if not counted:
-                self.refusals += 1
+                self.refusals.count += 1
                 continue
             self.replans += 1
             if self.replans >= self.config.fallback_after:
@@ -252,8 +241,7 @@ class ClosedLoop:
         """Plan from ``start``; not starting with a rotation the world has refused since the
         chain last moved (it would be refused again from nearly the same state), ignoring
         those refusals if that finds no plan."""
-        refused = self.refused
-        self._relaxed = False
+        refused = self.refusals.refused
         for avoid in ((refused, frozenset()) if refused else (frozenset(),)):
             enc = replace(self.encoding, refusals=True) if avoid else self.encoding
             domain = domain_pddl(self.obj, enc) if avoid else self.domain
@@ -263,9 +251,9 @@ class ClosedLoop:
             if result.status is PlanStatus.SOLVED:
                 if avoid:
                     self.progress("planned without starting with " + ", ".join(
-                        _rotation(r) for r in sorted(avoid)) + " (refused from here)")
+                        describe(r) for r in sorted(avoid)) + " (refused from here)")
                 break
-        self._relaxed = bool(refused) and not avoid
+        self.refusals.relaxed = bool(refused) and not avoid
         return result
 
     # -- execution ------------------------------------------------------------------------
@@ -281,7 +269,7 @@ class ClosedLoop:
         tol = 0.5 * float(self.world.model.opt.timestep) + _EPS
         next_mon = self.world.time
         self.resume = None
-        self._moved = False
+        self.refusals.moved = False
         while True:
             end = pred.t0 + span  # the prediction shifts when a grasp is late
             t_act = self._due(actions[i], pred) if i < len(actions) else end
@@ -311,7 +299,7 @@ class ClosedLoop:
                 while i < len(actions) and self._due(actions[i], pred) <= now + tol:
                     failure = self._dispatch(actions[i], pred, index)
                     i += 1
-                    if failure is not None and (self._free or self._may_replan()):
+                    if failure is not None and (self.refusals.free or self._may_replan()):
                         return failure
             if i >= len(actions) and now >= pred.t0 + span - tol:
                 return None
@@ -353,11 +341,9 @@ class ClosedLoop:
         except ActionFailed as exc:
             did, ok = str(exc), False
             if isinstance(step, Rotate):  # planned around at the next re-plan
-                self._refuse(step)
-        if ok and isinstance(step, Rotate):  # the pairs from the turned link on move
-            j = self.obj.index(step.turn)
-            self._moved = True
-            self.refused = frozenset(r for r in self.refused if self.obj.index(r[1]) < j)
+                self.refusals.refuse(step, self.world.time < self.config.max_time)
+        if ok and isinstance(step, Rotate):
+            self.refusals.turned(step, self.obj)
         if ok and self.world.time > now:  # the arms approached: the rotation starts now
             shift = self.world.time - planned
             did += f" (reach {self.world.time - now:.2f} s, {shift:+.2f} s off the plan)"
@@ -375,29 +361,9 @@ class ClosedLoop:
         self.observer(self.world, "action", action.signature)
         return None if ok else f"action failed: {did}"
 
-    def _refuse(self, step: Rotate) -> None:
-        """The world refused ``step``: remember it for the next plans; free of the re-plan
-        budget if nothing of this plan has moved yet (see :meth:`run`)."""
-        self.refused = self.refused | {_refusal(step)}
-        self._free = (not self._moved and not self._relaxed and self.refusals < MAX_REFUSALS
-                      and self.world.time < self.config.max_time)
-
     def _align(self, step: Rotate, pred: Prediction, speed: float) -> float:
-        """Shift the plan's clock so the turn ``step`` starting now ends where the plan says
-        on its plane (:mod:`artiplan.execution.regrasp`); returns how far [deg] the link was
-        behind the prediction (negative: ahead)."""
-        now = self.world.time
-        predicted = pred.at(now)
-        seen = self.world.perceive(reference=predicted).configuration
-        j = self.obj.index(step.turn)
-        behind = behind_deg(step, predicted, seen, j)
-        pred.t0 += behind / speed
-        if behind > 0.0:  # until the link has caught the plan up, predict it where it is
-            off = signed_delta_deg(pred.at(now).angle(j, step.plane), seen.angle(j, step.plane))
-            off = max(-behind, min(behind, off))  # no more than the catch-up explains
-            rigid = range(j, self.obj.n_links + 1) if step.plane == HORIZONTAL_PLANE else (j,)
-            pred.fade(dict.fromkeys(rigid, off), step.plane, now, now + behind / speed)
-        return behind
+        """:func:`artiplan.execution.regrasp.align` on this run's world."""
+        return align(self.world, step, pred, speed)
 
     def _speed(self, step: Rotate) -> float:
         """The rotation speed [deg/s] of ``step`` (the encoding's speed-i or speed-d)."""
@@ -417,7 +383,7 @@ class ClosedLoop:
             did, ok = rotate(self.world, step, r.speed, pred.at(now), remaining), True
         except ActionFailed as exc:
             did, ok = str(exc), False
-            self._refuse(step)
+            self.refusals.refuse(step, self.world.time < self.config.max_time)
         if ok:
             waited = self.world.time - now
             pred.t0 += waited
@@ -455,16 +421,6 @@ class ClosedLoop:
                       + ", ".join(f"{k} {v:.1f} deg" for k, v in errs.items()))
         self.observer(self.world, "final", "goal reached" if ok else "goal not reached")
         return ok
-
-
-def _refusal(step: Rotate) -> tuple[str, str, str, str]:
-    """``step`` as a refused rotation (see :func:`artiplan.encoding.problem_pddl`)."""
-    return (step.hold, step.turn, step.plane, "increase" if step.direction > 0 else "decrease")
-
-
-def _rotation(refused: tuple[str, str, str, str]) -> str:
-    hold, turn, plane, sign = refused
-    return f"({'start-' + sign} {hold} {turn} {plane})"
 
 
 def _carried(links: tuple[str, ...], step: Step) -> frozenset[str]:

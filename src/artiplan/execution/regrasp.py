@@ -6,7 +6,9 @@ gravity acted, the arms' approach took its time), the rotated link is perceived 
 clock shifted by how far it is behind (or ahead of) the prediction along the turn, divided by
 the turn's speed, so the plan's stop comes that much later (earlier). The monitor then compares
 with a prediction that starts where the link is (the other plane's offset is the next turn's
-to absorb, as it is aligned in its turn).
+to absorb, as it is aligned in its turn): ahead, the shifted plan is already there; behind,
+the shifted plan would still be in the release before the turn, so the link is predicted
+where it was seen, the difference fading out as the turn catches the plan up (:func:`align`).
 
 A planned rotation can be longer than one grasp pair can turn without a collision or without
 losing the link (Baxter's arms: the fixture, the torso, a neighbouring link, the rotating arm's
@@ -28,6 +30,7 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 from artiplan.execution.dispatch import Rotate
+from artiplan.execution.predict import Prediction
 from artiplan.model import HORIZONTAL_PLANE, VERTICAL_PLANE, Configuration
 from artiplan.model.angles import signed_delta_deg
 
@@ -91,3 +94,23 @@ def behind_deg(step: Rotate, predicted: Configuration, perceived: Configuration,
     behind = step.direction * signed_delta_deg(perceived.angle(index, step.plane),
                                                predicted.angle(index, step.plane))
     return min(max(behind, -MAX_LOST_DEG), MAX_LOST_DEG)
+
+
+def align(world: World, step: Rotate, pred: Prediction, speed: float) -> float:
+    """Shift the plan's clock (``pred.t0``) so the turn ``step`` starting now at ``speed``
+    [deg/s] ends where the plan says on its plane; returns how far [deg] the link was behind
+    the prediction (negative: ahead). A link behind is predicted where it is until it has
+    caught the plan up (:meth:`Prediction.fade`; rigidly with it the links tip-ward of it on a
+    turn about the vertical), so the monitor does not take the catch-up for a deviation."""
+    now = world.time
+    predicted = pred.at(now)
+    seen = world.perceive(reference=predicted).configuration
+    j = world.obj.index(step.turn)
+    behind = behind_deg(step, predicted, seen, j)
+    pred.t0 += behind / speed
+    if behind > 0.0:
+        off = signed_delta_deg(pred.at(now).angle(j, step.plane), seen.angle(j, step.plane))
+        off = max(-behind, min(behind, off))  # no more than the catch-up explains
+        rigid = range(j, world.obj.n_links + 1) if step.plane == HORIZONTAL_PLANE else (j,)
+        pred.fade(dict.fromkeys(rigid, off), step.plane, now, now + behind / speed)
+    return behind

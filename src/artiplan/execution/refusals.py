@@ -1,0 +1,65 @@
+"""Rotations the world refused, planned around (execution, not planning).
+
+Baxter's arms refuse a rotation when no grasp pair keeps clear over the turn or no
+collision-free arm motion to the grasps is found (:class:`artiplan.world.NotExecutableError`).
+From nearly the same state the same start would be refused again, so the loop remembers it as
+(hold link, rotated link, plane, ``increase``/``decrease``) and the next plans do not start it
+before the pair has moved (``EncodingOptions.refusals``: a turn of the rotated link or of one
+base-ward of it). A plan whose rotation is refused before anything of it moved was never
+executed: planning again is part of planning (the motion planner answering the task planner)
+and does not spend the re-plan budget, up to :data:`MAX_FREE` times a run.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+from artiplan.execution.dispatch import Rotate
+from artiplan.model import ArticulatedObject
+
+#: A refused rotation: (hold link, rotated link, plane, ``increase`` or ``decrease``).
+Refusal = tuple[str, str, str, str]
+#: At most this many plans a run whose rotation the world refused before anything of them
+#: moved are planned again without spending the re-plan budget.
+MAX_FREE = 12
+
+
+@dataclass
+class Refusals:
+    """The refusals of one run and whether the last one is free of the re-plan budget.
+
+    Attributes:
+        refused: Rotations refused since their pair last moved.
+        moved: Whether the plan being executed has turned anything yet.
+        relaxed: Whether that plan was found only by ignoring ``refused``.
+        free: Whether the last failure is a refusal free of the re-plan budget.
+        count: Plans made again for free so far.
+    """
+
+    refused: frozenset[Refusal] = frozenset()
+    moved: bool = False
+    relaxed: bool = False
+    free: bool = False
+    count: int = 0
+
+    def refuse(self, step: Rotate, in_time: bool) -> None:
+        """The world refused ``step``; ``in_time``: the run still has time to plan again."""
+        self.refused = self.refused | {refusal(step)}
+        self.free = not self.moved and not self.relaxed and self.count < MAX_FREE and in_time
+
+    def turned(self, step: Rotate, obj: ArticulatedObject) -> None:
+        """``step`` started: the pairs from its rotated link on have moved."""
+        j = obj.index(step.turn)
+        self.moved = True
+        self.refused = frozenset(r for r in self.refused if obj.index(r[1]) < j)
+
+
+def refusal(step: Rotate) -> Refusal:
+    """``step`` as a refused rotation (see :func:`artiplan.encoding.problem_pddl`)."""
+    return (step.hold, step.turn, step.plane, "increase" if step.direction > 0 else "decrease")
+
+
+def describe(r: Refusal) -> str:
+    """The refused rotation as its start action, e.g. ``(start-increase L2 L3 z-axis)``."""
+    hold, turn, plane, sign = r
+    return f"(start-{sign} {hold} {turn} {plane})"
