@@ -294,8 +294,9 @@ def _ompl(
 ) -> list[Vec] | None:
     """RRT-Connect until :data:`ATTEMPTS` paths are found (each simplified and checked at
     the fine step), the fastest kept; the attempts stop once ``time_s`` is used up (or,
-    with a path, one is near enough the straight segment's cost). A path that fails the
-    fine check does not use up an attempt: RRT-Connect starts again while time is left."""
+    with a path, one is near enough the straight segment's cost). Until a first path passes
+    the fine check, one that fails it uses up no attempt: RRT-Connect starts again while
+    time is left."""
     from ompl import base as ob
     from ompl import geometric as og
     from ompl import util as ou
@@ -335,16 +336,16 @@ def _ompl(
         setup.clear()
         solved = setup.solve(left if best is None else min(left, ATTEMPT_S))
         if not bool(solved) or not setup.haveExactSolutionPath():
-            if best is not None:
-                found += 1  # a later attempt found nothing in its time: enough
+            found += best is not None  # a later attempt found nothing in its time
             continue
         setup.simplifySolution(SIMPLIFY_TIME_S)
         p = setup.getSolutionPath()
         path = [np.array([p.getState(k)[i] for i in range(n)]) for k in range(p.getStateCount())]
         path[0], path[-1] = start.copy(), goal.copy()
-        if not checker.path_valid(path, query):
+        passes = checker.path_valid(path, query)
+        found += best is not None or passes  # no attempt used up until a first path passes
+        if not passes:
             continue
-        found += 1
         if best is None or path_cost(path) < path_cost(best):
             best = path
         if path_cost(best) <= GOOD_ENOUGH * path_cost([start, goal]):
