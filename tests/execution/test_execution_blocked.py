@@ -107,3 +107,33 @@ def test_plan_steps_map_each_action_once_with_its_own_stop() -> None:
     assert (first.hold, first.turn, first.plane, first.direction) == ("L2", "L3", "z-axis", 1)
     assert first.duration == pytest.approx(8.0)
     assert last.direction == -1 and last.duration is None
+
+
+def test_refusals_are_dropped_when_their_pair_moves_and_free_only_before_anything_moved() -> None:
+    from artiplan.execution.dispatch import Rotate
+    from artiplan.execution.refusals import MAX_FREE, Refusals, describe
+    from artiplan.semantics import TimedAction
+
+    obj = ArticulatedObject(4)
+
+    def rot(hold: str, turn: str, plane: str, direction: int) -> Rotate:
+        sign = "increase" if direction > 0 else "decrease"
+        return Rotate(TimedAction(1.0, f"start-{sign}", (hold, turn, plane)), hold, turn,
+                      plane, direction, 5.0)
+
+    r = Refusals()
+    r.refuse(rot("L2", "L3", "z-axis", 1), in_time=True)
+    r.refuse(rot("L3", "L4", "xy-axes", -1), in_time=True)
+    assert r.free and describe(sorted(r.refused)[0]) == "(start-increase L2 L3 z-axis)"
+    r.turned(rot("L3", "L4", "z-axis", 1), obj)  # L4 moved: only L3-L4's refusal goes
+    assert r.refused == {("L2", "L3", "z-axis", "increase")}
+    r.refuse(rot("L1", "L2", "z-axis", 1), in_time=True)
+    assert not r.free  # something of this plan has moved: a re-plan
+    r.turned(rot("L1", "L2", "xy-axes", 1), obj)  # L2 moved: every pair tip-ward of it too
+    assert not r.refused
+    r.moved, r.count = False, MAX_FREE
+    r.refuse(rot("L2", "L3", "z-axis", 1), in_time=True)
+    assert not r.free  # the free ones are used up
+    r.count = 0
+    r.refuse(rot("L2", "L3", "z-axis", 1), in_time=False)
+    assert not r.free
