@@ -40,7 +40,7 @@ from artiplan.pddl.task import (
     NumExpr,
     Truth,
 )
-from artiplan.search.heuristic import Evaluation, GoalGroup, HeuristicConfig
+from artiplan.search.heuristic import Evaluation, GoalGroup, HeuristicConfig, propagate
 from artiplan.semantics.compiled import CompiledTask, compile_condition
 from artiplan.semantics.walks import SOURCE_GLOBALS, conjuncts, expr_source, fluents_of, linear
 
@@ -372,18 +372,7 @@ class NumericHeuristic:
         for i, o in enumerate(self.ops):
             if not o.pre:
                 fire(i)
-        heapq.heapify(heap)
-        done = [False] * len(cost)
-        while heap:
-            c, node = heapq.heappop(heap)
-            if done[node] or c > cost[node]:
-                continue
-            done[node] = True
-            for i in self.users[node]:
-                remaining[i] -= 1
-                acc[i] += c
-                if remaining[i] == 0:
-                    fire(i)
+        propagate(heap, cost, self.users, remaining, acc, fire)
         return self._result(cost, supp, acc, active, facts, values, need_t, left)
 
     def _time_left(self, k: int, pv: float, values: Values, flow: dict[int, float]) -> float:
