@@ -94,8 +94,8 @@ def base_plans(suite: Path, peers: Path | None, time_limit: float) -> Iterator[d
                    "problem_id": row["problem_id"], "plan": format_plan(closed, events=False)}
 
 
-def judge(domain: str, problem: str, text: str, val_limit: float) -> dict[str, Any]:
-    """Both verdicts on one plan text."""
+def judge_ours(domain: str, problem: str, text: str) -> dict[str, Any]:
+    """Our validator's verdict on one plan text."""
     task = load_task(domain, problem)
     t = time.perf_counter()
     try:
@@ -103,14 +103,31 @@ def judge(domain: str, problem: str, text: str, val_limit: float) -> dict[str, A
         mine = {"ours": ours.valid, "ours_kind": ours.kind, "ours_reason": ours.reason[:300]}
     except Exception as exc:  # a crash of ours is a finding, not a verdict
         mine = {"ours": None, "ours_kind": "crash", "ours_reason": f"{type(exc).__name__}: {exc}"}
-    ours_s = time.perf_counter() - t
+    return {**mine, "ours_s": round(time.perf_counter() - t, 4)}
+
+
+def rejudge(src: Path, out: Path) -> None:
+    """Our validator again on every row of ``src`` (VAL's verdict on the same text does not
+    depend on our code, so it is kept): the agreement of today's validator, rows to ``out``."""
+    rows = read_rows_any(src)
+    with out.open("w") as fh:
+        for k, row in enumerate(rows, 1):
+            row = {**row, **judge_ours(row["domain"], row["problem"], row["plan"])}
+            fh.write(json.dumps(row) + "\n")
+            if k % 250 == 0:
+                print(f"{k}/{len(rows)} plans re-judged", file=sys.stderr, flush=True)
+
+
+def judge(domain: str, problem: str, text: str, val_limit: float) -> dict[str, Any]:
+    """Both verdicts on one plan text."""
+    mine = judge_ours(domain, problem, text)
     with tempfile.NamedTemporaryFile("w", suffix=".plan") as fh:
         fh.write(text)
         fh.flush()
         val = validate_with_val(domain, problem, fh.name, time_limit=val_limit,
                                 memory_limit=2048)
     return {**mine, "val": val.verdict, "val_reason": val.reason[:300],
-            "ours_s": round(ours_s, 4), "val_cpu_s": round(val.cpu_s, 4)}
+            "val_cpu_s": round(val.cpu_s, 4)}
 
 
 def run(args: argparse.Namespace) -> None:
@@ -209,8 +226,13 @@ def main() -> None:
     ap.add_argument("--time-limit", type=float, default=60.0, help="artiplan's limit [s]")
     ap.add_argument("--val-time-limit", type=float, default=20.0, help="VAL's CPU limit [s]")
     ap.add_argument("--only-summary", action="store_true", help="summarise the rows, no runs")
+    ap.add_argument("--rejudge", metavar="ROWS",
+                    help="re-run only our validator on the rows of this file (VAL's verdicts "
+                    "kept) and write them to --out")
     args = ap.parse_args()
-    if not args.only_summary:
+    if args.rejudge:
+        rejudge(Path(args.rejudge), Path(args.out))
+    elif not args.only_summary:
         run(args)
     text = summarise(read_rows_any(Path(args.out)))
     print(text)

@@ -81,3 +81,38 @@ def test_second_order_time_to_a_need() -> None:
     assert t is not None and abs(t - 2.0) < 1e-9
     # a rate that points the wrong way and decelerates further never gets there
     assert _time_to(2.0, -1.0, -1.0) is None
+
+
+def test_fractional_powers_are_real_or_undefined() -> None:
+    import pytest
+
+    from artiplan.semantics.walks import DomainError, power
+
+    assert power(4.0, 0.5) == 2.0
+    assert power(-2.0, 2) == 4.0
+    assert power(-1e-12, 0.5) == 0.0  # a level drained to 0, rounded below it
+    with pytest.raises(DomainError):
+        power(-1.0, 0.5)
+    with pytest.raises(ZeroDivisionError):  # callers treat both as "undefined here"
+        power(-1.0, 0.5)
+
+
+def test_a_time_only_worse_condition_is_a_deadline_and_a_switchable_one_is_not() -> None:
+    # clock only grows (a deadline for `clock <= 5`); `temp` cools or heats by actions
+    domain = """(define (domain d) (:requirements :fluents :time)
+      (:predicates (on) (heating) (done))
+      (:functions (clock) (temp))
+      (:process tick :parameters () :precondition (on) :effect (increase (clock) (* #t 1)))
+      (:process cool :parameters () :precondition (on) :effect (decrease (temp) (* #t 1)))
+      (:process heat :parameters () :precondition (and (on) (heating))
+        :effect (increase (temp) (* #t 3)))
+      (:action heater-on :parameters () :precondition (not (heating)) :effect (heating))
+      (:action finish :parameters ()
+        :precondition (and (<= (clock) 5) (>= (temp) 1)) :effect (done)))"""
+    problem = """(define (problem p) (:domain d)
+      (:init (on) (= (clock) 0) (= (temp) 3)) (:goal (done)))"""
+    ct = compile_task(load_task(domain, problem))
+    heur = NumericHeuristic(ct)
+    kinds = {heur.conds[k].op: k in heur.deadlines for k in range(len(heur.conds))}
+    assert kinds["<="] is True  # clock <= 5
+    assert kinds[">="] is False  # temp >= 1: the heater turns it around

@@ -19,7 +19,7 @@ from __future__ import annotations
 import heapq
 import math
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 from typing import Protocol
 
@@ -93,6 +93,25 @@ class Evaluation:
     waits: tuple[int, ...]  # goal groups whose chosen process already runs
     actions_needed: bool  # some unsatisfied group needs a new action
     unsatisfied: int
+
+
+def propagate(heap: list[tuple[float, int]], cost: list[float], users: Sequence[Sequence[int]],
+              remaining: list[int], acc: list[float], fire: Callable[[int], None]) -> None:
+    """The fixpoint of an additive relaxation: nodes leave ``heap`` cheapest first; an
+    operator (an index into ``remaining``/``acc``) fires once its last precondition is reached,
+    ``acc`` holding the sum of their costs; ``fire`` pushes what it reaches onto ``heap``."""
+    heapq.heapify(heap)
+    done = [False] * len(cost)
+    while heap:
+        c, node = heapq.heappop(heap)
+        if done[node] or c > cost[node]:
+            continue
+        done[node] = True
+        for i in users[node]:
+            remaining[i] -= 1
+            acc[i] += c
+            if remaining[i] == 0:
+                fire(i)
 
 
 class RateHeuristic(SideEffects):
@@ -241,18 +260,10 @@ class RateHeuristic(SideEffects):
         for a, pre in enumerate(self.pre_lits):
             if not pre:
                 self._achieve(a, self._op_cost(a), cost, supp, heap)
-        heapq.heapify(heap)
-        done = [False] * (2 * n)
-        while heap:
-            c, lit = heapq.heappop(heap)
-            if done[lit] or c > cost[lit]:
-                continue
-            done[lit] = True
-            for a in self.lit_users[lit]:
-                remaining[a] -= 1
-                acc[a] += c
-                if remaining[a] == 0:
-                    self._achieve(a, acc[a] + self._op_cost(a), cost, supp, heap)
+        def fire(a: int) -> None:
+            self._achieve(a, acc[a] + self._op_cost(a), cost, supp, heap)
+
+        propagate(heap, cost, self.lit_users, remaining, acc, fire)
         return cost, supp
 
     def _op_cost(self, a: int) -> float:

@@ -40,9 +40,9 @@ from artiplan.pddl.task import (
     NumExpr,
     Truth,
 )
-from artiplan.search.heuristic import Evaluation, GoalGroup, HeuristicConfig
+from artiplan.search.heuristic import Evaluation, GoalGroup, HeuristicConfig, propagate
 from artiplan.semantics.compiled import CompiledTask, compile_condition
-from artiplan.semantics.walks import conjuncts, expr_source, fluents_of, linear
+from artiplan.semantics.walks import SOURCE_GLOBALS, conjuncts, expr_source, fluents_of, linear
 
 Values = tuple[float, ...]
 PFn = Callable[[Values], float]
@@ -54,7 +54,8 @@ MAX_REPEATS = 1000
 
 
 def _compile_expr(expr: NumExpr) -> PFn:
-    fn: Callable[[Values], float] = eval(f"lambda V: {expr_source(expr)}")  # noqa: S307
+    fn: Callable[[Values], float] = eval(  # noqa: S307 - source generated from the task
+        f"lambda V: {expr_source(expr)}", dict(SOURCE_GLOBALS))
 
     def safe(values: Values) -> float:
         try:
@@ -156,9 +157,24 @@ class NumericHeuristic:
                 written |= _moved(eff)[0]
         varying = {f for p in ct.processes for f, _, lin in p.rates
                    if lin is None or lin[0]}
+        signs: dict[int, set[float]] = {}  # fluent -> signs of the constant rates moving it
+        for p in ct.processes:
+            for f, _, lin in p.rates:
+                if lin is not None and not lin[0] and lin[1]:
+                    signs.setdefault(f, set()).add(math.copysign(1.0, lin[1]))
+
+        def against(c: _Cond) -> bool:
+            """Time only makes ``c`` worse: every rate moving its fluents closes it."""
+            assert c.gradient is not None
+            way = 1 if c.op in (">", ">=") else -1
+            return c.op != "=" and all(
+                len(signs.get(f, ())) == 1 and next(iter(signs[f])) * g * way < 0.0
+                for f, g in c.gradient.items() if g)
+
         self.deadlines = frozenset(
             k for k, c in enumerate(self.conds)
-            if c.fluents and not c.fluents & (written | varying) and c.gradient is not None)
+            if c.fluents and not c.fluents & (written | varying) and c.gradient is not None
+            and against(c))
         self.rate_fns: list[list[tuple[int, PFn]]] = [
             [(f, _compile_expr(e)) for f, e, _ in p.rates] for p in ct.processes]
         self.rate_reads: dict[int, frozenset[int]] = {}
@@ -294,7 +310,7 @@ class NumericHeuristic:
             """(cost beyond the operator's preconditions, time [s]) of reaching condition
             ``k`` by ``o``; None if ``o`` does not reach it."""
             need, way = self._need(k, pv[k])
-            if need != need:
+            if need != need and o.kind == "process":  # undefined here (a quotient by 0)
                 return None
             if o.kind == "process":
                 assert o.rate is not None
@@ -303,8 +319,8 @@ class NumericHeuristic:
                     return None
                 r = abs(slope) * o.rate(values) * o.sign
                 r2 = abs(slope) * self._rate_change(o, values, flow) * o.sign
-                t = _time_to(need, r, r2)
-                if t is None:
+                t = _time_to(need, r, r2) if math.isfinite(r + r2) else None
+                if t is None or t != t:
                     return 1.0, 0.0  # the rate turns the right way only later: time unknown
                 return tw * t, t
             key = o.index if o.kind == "action" else -1 - o.index
@@ -321,7 +337,8 @@ class NumericHeuristic:
             if self._holds(k, moved):
                 return (1.0 if o.kind == "action" else 0.0), 0.0
             delta = moved - pv[k]
-            if o.kind != "action" or k not in o.additive or delta * way <= 0.0:
+            if need != need or o.kind != "action" or k not in o.additive or not delta * way > 0.0 \
+                    or not math.isfinite(delta):  # NaN/inf: a quotient by 0 on the way
                 return None
             return float(min(MAX_REPEATS, math.ceil(need / abs(delta) - 1e-9))), 0.0
 
@@ -355,18 +372,7 @@ class NumericHeuristic:
         for i, o in enumerate(self.ops):
             if not o.pre:
                 fire(i)
-        heapq.heapify(heap)
-        done = [False] * len(cost)
-        while heap:
-            c, node = heapq.heappop(heap)
-            if done[node] or c > cost[node]:
-                continue
-            done[node] = True
-            for i in self.users[node]:
-                remaining[i] -= 1
-                acc[i] += c
-                if remaining[i] == 0:
-                    fire(i)
+        propagate(heap, cost, self.users, remaining, acc, fire)
         return self._result(cost, supp, acc, active, facts, values, need_t, left)
 
     def _time_left(self, k: int, pv: float, values: Values, flow: dict[int, float]) -> float:

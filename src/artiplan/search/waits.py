@@ -39,9 +39,23 @@ def ceil_grid(t: float, grid: float) -> float:
 class Waits:
     """Waits over one kernel."""
 
+    #: How far [s] one wait looks ahead along a flow without a closed form: integrating to the
+    #: kernel's own horizon (an hour) for every wait made nonlinear domains 10-20x slower; a
+    #: longer wait is made of several (each stop is then a state like any other).
+    LOOKAHEAD = 60.0
+
     def __init__(self, kernel: Kernel) -> None:
         self.kernel = kernel
         self.grid = kernel.ct.tol.grid
+
+    #: How many look-aheads in a row without a change :meth:`until` takes before giving up.
+    BLIND_LOOKAHEADS = 5
+
+    def _change(self, values: Values, flow: Flow, comps: tuple[int, ...]) -> float | None:
+        """``Kernel.next_change``, at most :attr:`LOOKAHEAD` ahead on numeric flows."""
+        if flow.exact or not comps:
+            return self.kernel.next_change(values, flow, comps)
+        return self.kernel.next_change(values, flow, comps, self.LOOKAHEAD)
 
     def next(self, t: float, facts: int, values: Values, log: EventLog, active: tuple[int, ...],
              margin: float = 0.0, goal_comps: frozenset[int] = frozenset()) -> Arrival | None:
@@ -54,7 +68,7 @@ class Waits:
         flow = k.flow_of(active, values)
         if not flow.moving:
             return None
-        dt = k.next_change(values, flow, k.comps_for(flow, "watched"))
+        dt = self._change(values, flow, k.comps_for(flow, "watched"))
         if dt is None or not math.isfinite(dt):
             return None
         end = grid_after(t + dt, self.grid)
@@ -104,11 +118,11 @@ class Waits:
         holding = tuple(sorted(c for c in comps if items[c].fluents & flow.changing
                                and self._holds(c, values)))
         ends: list[float] = []
-        dt = k.next_change(values, flow, holding) if holding else None
+        dt = self._change(values, flow, holding) if holding else None
         if dt is not None and math.isfinite(dt):
             ends.append(floor_grid(t + dt, self.grid))
         moving = tuple(sorted(c for c in triggers if items[c].fluents & flow.changing))
-        dt = k.next_change(values, flow, moving) if moving else None
+        dt = self._change(values, flow, moving) if moving else None
         if dt is not None and math.isfinite(dt):
             ends.append(floor_grid(t + dt - gap, self.grid))
         end = min(ends, default=math.inf)
@@ -136,11 +150,17 @@ class Waits:
         """
         k = self.kernel
         act = active
+        blind = 0
         for _ in range(max_steps):
             flow = k.flow_of(act, values)
             if not flow.moving:
                 return None
-            dt = k.next_change(values, flow, self._watch(flow, cond_comps))
+            dt = self._change(values, flow, self._watch(flow, cond_comps))
+            if dt is None and not flow.exact and blind < self.BLIND_LOOKAHEADS \
+                    and all(math.isfinite(v) for v in flow.values(values, self.LOOKAHEAD)):
+                dt, blind = self.LOOKAHEAD, blind + 1  # nothing within the look-ahead: on
+            else:
+                blind = 0
             if dt is None or not math.isfinite(dt):
                 return None
             t_next = grid_after(t + dt, self.grid)

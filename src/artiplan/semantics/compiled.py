@@ -31,6 +31,7 @@ from artiplan.pddl.task import Atom as _Atom
 from artiplan.pddl.task import Comparison as _Comparison
 from artiplan.semantics.cache import per_task
 from artiplan.semantics.walks import (
+    SOURCE_GLOBALS,
     Linear,
     comparison_source,
     condition_parts,
@@ -106,7 +107,7 @@ def compile_condition(
         return comparison_source(c, tol)
 
     src = condition_source(cond, comparison)
-    fn: CondFn = eval(f"lambda F, V: {src}")  # noqa: S307 - source generated from the task
+    fn: CondFn = eval(f"lambda F, V: {src}", dict(SOURCE_GLOBALS))  # noqa: S307 - source generated from the task
     return fn, frozenset(used)
 
 
@@ -160,7 +161,7 @@ def compile_effect(eff: Effect, comps: ComparisonTable, tol: Tolerances) -> tupl
     split = ["def _parts(F, V):", "    add = 0", "    dele = 0", "    U = []"]
     _effect_lines(eff, "    ", cond_src, split, parts=True)
     split.append("    return add, dele, U")
-    namespace: dict[str, object] = {}
+    namespace: dict[str, object] = dict(SOURCE_GLOBALS)
     exec("\n".join(apply + split), namespace)  # noqa: S102 - source generated from the task
     return namespace["_eff"], namespace["_parts"]  # type: ignore[return-value]
 

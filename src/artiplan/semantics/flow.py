@@ -26,7 +26,15 @@ from dataclasses import dataclass
 from artiplan.pddl.task import BinOp, Const, FluentRef, NumExpr
 from artiplan.semantics import polynomial as P
 from artiplan.semantics.compiled import Comparison, Process
-from artiplan.semantics.walks import Box, evaluate, expr_source, interval, to_poly
+from artiplan.semantics.walks import (
+    SOURCE_GLOBALS,
+    Box,
+    DomainError,
+    evaluate,
+    expr_source,
+    interval,
+    to_poly,
+)
 from artiplan.tolerances import Tolerances
 
 Values = tuple[float, ...]
@@ -206,7 +214,7 @@ class NumericFlow(Flow):
 
     #: Local error allowed per step, relative to max(1, |value|).
     RTOL = 1e-9
-    H_MAX = 0.5
+    H_MAX = 2.0
     H_MIN = 1e-6
     #: How far [s] and how many steps a search for a crossing looks ahead at most.
     HORIZON = 3600.0
@@ -225,7 +233,7 @@ class NumericFlow(Flow):
             terms[f].append(expr_source(e))
         body = ", ".join(f"({f}, {' + '.join(t)})" for f, t in sorted(terms.items()))
         self._deriv: Callable[[Sequence[float]], list[tuple[int, float]]] = eval(
-            f"lambda V: [{body}]")  # noqa: S307 - source generated from the task
+            f"lambda V: [{body}]", dict(SOURCE_GLOBALS))  # noqa: S307 - source generated from the task
         self._shape = shape
         self._times: list[float] = [0.0]
         self._states: list[Values] = [start]
@@ -255,8 +263,14 @@ class NumericFlow(Flow):
         h = min(self.H_MAX, max(self.H_MIN, (t - self._times[-2]) * 2.0 if len(self._times) > 1
                                 else 1e-3))
         while True:
-            full = self._rk4(x, h)
-            half = self._rk4(self._rk4(x, 0.5 * h), 0.5 * h)
+            try:
+                full = self._rk4(x, h)
+                half = self._rk4(self._rk4(x, 0.5 * h), 0.5 * h)
+            except DomainError:  # a stage left the rate's domain (sqrt of a level below 0)
+                if h <= self.H_MIN:
+                    raise
+                h *= 0.5
+                continue
             err = max((abs(full[f] - half[f]) / max(1.0, abs(half[f])) for f in self.changing),
                       default=0.0)
             if err <= self.RTOL or h <= self.H_MIN:

@@ -79,6 +79,30 @@ def conjuncts(cond: Condition) -> list[Condition]:
 # ------------------------------------------------------------------------------------ values
 
 
+class DomainError(ZeroDivisionError):
+    """A value outside an operation's domain (a negative base to a fractional power): caught
+    wherever a division by zero is, since both leave the expression undefined."""
+
+
+#: A negative base this close to 0 is 0 to a fractional power (float rounding of a level that
+#: drained to exactly 0, not a negative level).
+POWER_ZERO = 1e-9
+
+
+def power(a: float, b: float) -> float:
+    """``a ^ b`` as PDDL reads it: real, undefined (DomainError) for a < 0 and fractional b
+    (Python's ``**`` would return a complex number)."""
+    if a < 0.0 and not float(b).is_integer():
+        if a >= -POWER_ZERO:
+            return 0.0 if b > 0 else math.inf  # rounding below a 0 the dynamics stop at
+        raise DomainError(f"({a}) ^ {b} is not a real number")
+    return float(a**b)
+
+
+#: Names the generated sources (:func:`expr_source`) use, for their ``eval``.
+SOURCE_GLOBALS: dict[str, object] = {"_pow": power}
+
+
 def _apply(op: str, a: float, b: float) -> float:
     if op == "+":
         return a + b
@@ -88,7 +112,7 @@ def _apply(op: str, a: float, b: float) -> float:
         return a * b
     if op == "/":
         return a / b
-    return a**b
+    return power(a, b)
 
 
 def evaluate(expr: NumExpr, values: Sequence[float]) -> float:
@@ -273,8 +297,9 @@ def expr_source(expr: NumExpr, var: str = "V") -> str:
         return f"{var}[{expr.index}]"
     if isinstance(expr, Neg):
         return f"(-{expr_source(expr.operand, var)})"
-    op = "**" if expr.op == "^" else expr.op
-    return f"({expr_source(expr.left, var)} {op} {expr_source(expr.right, var)})"
+    if expr.op == "^":
+        return f"_pow({expr_source(expr.left, var)}, {expr_source(expr.right, var)})"
+    return f"({expr_source(expr.left, var)} {expr.op} {expr_source(expr.right, var)})"
 
 
 def condition_source(cond: Condition, comparison: Callable[[Comparison], str]) -> str:
