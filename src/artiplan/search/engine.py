@@ -112,6 +112,8 @@ class SearchConfig:
             a condition may change, or just before.
         before_events: :class:`WaitBefore` also stops ``event_gap`` before the next event
             (the last moment to act before a tank runs dry).
+        g_weight: Open-list priority is ``h + g_weight * actions on the path`` (0: greedy).
+        max_repairs: Timing repairs (``repair`` callback) one search may try at most.
     """
 
     epsilon: float = 0.001
@@ -123,7 +125,6 @@ class SearchConfig:
     delta: float | None = None
     before_events: bool = False
     g_weight: float = 0.0
-    wait_next: bool = True
     max_repairs: int = 25
 
 
@@ -457,8 +458,7 @@ class Search:
             else:
                 ops.append((self.applies[i], True))
         if moving:
-            if self.config.wait_next:
-                ops.append((WAIT_NEXT, False))
+            ops.append((WAIT_NEXT, False))
             if self.triggers or (self.closers and self.waits.closing(node.values, node.active,
                                                                       self.closers)):
                 ops.append((WAIT_BEFORE, False))

@@ -89,6 +89,7 @@ class _Op:
     fluent: int = -1  # process: the fluent, its rate, the direction this operator stands for
     rate: PFn | None = None
     sign: int = 0
+    reads: frozenset[int] = frozenset()  # process: the fluents its rate reads
 
 
 class NumericHeuristic:
@@ -127,7 +128,8 @@ class NumericHeuristic:
                         op: Literal[">", "<"] = ">" if sign > 0 else "<"
                         pre.append(2 * n + self._cond(Comparison(op, rate, Const(0.0))))
                     self.ops.append(_Op("process", p.index, tuple(pre), (), (), fluent=fluent,
-                                        rate=_compile_expr(rate), sign=sign))
+                                        rate=_compile_expr(rate), sign=sign,
+                                        reads=fluents_of(rate)))
         self.goal_nodes: list[tuple[int, ...]] = []
         self.groups: list[GoalGroup] = []
         for conj in conjuncts(task.goal):
@@ -177,11 +179,6 @@ class NumericHeuristic:
             and against(c))
         self.rate_fns: list[list[tuple[int, PFn]]] = [
             [(f, _compile_expr(e)) for f, e, _ in p.rates] for p in ct.processes]
-        self.rate_reads: dict[int, frozenset[int]] = {}
-        for o in self.ops:
-            if o.kind == "process":
-                rates = {f: e for f, e, _ in ct.processes[o.index].rates}
-                self.rate_reads[id(o)] = fluents_of(rates[o.fluent])
         self.users: list[list[int]] = [[] for _ in range(2 * n + len(self.conds))]
         for i, o in enumerate(self.ops):
             for node in o.pre:
@@ -277,7 +274,7 @@ class NumericHeuristic:
         """d/dt of operator ``o``'s rate along the current flow (its second order)."""
         assert o.rate is not None
         total = 0.0
-        for j in self.rate_reads[id(o)]:
+        for j in o.reads:
             r = flow.get(j)
             if not r:
                 continue

@@ -7,12 +7,12 @@ search path, in order, with their grid times, and the action that should end it)
 moves the times to satisfy every precondition, the goal, and the planner's distance from
 events, with the kernel's exact trajectory as the model:
 
-    residuals(times) = [max(0, margin - robustness(c)) for each condition c read]
+    margins(times) = [robustness(c) for each condition c read]
 
-minimised by bounded least squares (scipy's trust-region reflective, finite differences) over
-the gaps between happenings; actions that the skeleton applies one ``epsilon`` apart stay
-``epsilon`` apart. Residuals are 0 exactly when every condition holds by ``margin``; the caller
-validates the result like any plan (the kernel, not the optimiser, is the judge).
+kept >= 2 * margin by scipy's SLSQP (finite differences) over the gaps between happenings,
+stopping at the first point where every margin is >= 1.5 * margin; actions that the skeleton
+applies one ``epsilon`` apart stay ``epsilon`` apart. The caller validates the result like any
+plan (the kernel, not the optimiser, is the judge).
 """
 
 from __future__ import annotations
@@ -51,7 +51,7 @@ class Repair:
 
 
 class TimingProblem:
-    """The residuals of a skeleton as a function of its happening gaps."""
+    """The margins of a skeleton as a function of its happening gaps."""
 
     def __init__(self, ct: CompiledTask, kernel: Kernel, actions: Sequence[int],
                  times: Sequence[float], settings: Repair) -> None:
@@ -109,11 +109,6 @@ class TimingProblem:
             return self._margins(self.times(gaps, rounded))
         except (InvalidPlanError, ZeroDivisionError, OverflowError, ValueError):
             return [-FAILED] * n
-
-    def residuals(self, gaps: Sequence[float], rounded: bool = True) -> list[float]:
-        """``max(0, margin - m)`` of every margin ``m``: all 0 when the plan holds."""
-        mu = self.settings.margin
-        return [max(0.0, mu - m) for m in self.margins(gaps, rounded)]
 
     def _margins(self, times: list[float]) -> list[float]:
         kernel = self.kernel
