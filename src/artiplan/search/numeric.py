@@ -23,10 +23,11 @@ whose facts hold while a running process brings their numbers (the search waits 
 from __future__ import annotations
 
 import heapq
+import itertools
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Literal
 
 from artiplan.pddl.task import (
@@ -41,11 +42,20 @@ from artiplan.pddl.task import (
     Truth,
 )
 from artiplan.search.heuristic import Evaluation, GoalGroup, HeuristicConfig, propagate
+from artiplan.search.motion import (
+    MotionGoal,
+    find_controls,
+    find_motions,
+    motion_goals,
+    speed_limits,
+)
 from artiplan.semantics.compiled import CompiledTask, compile_condition
 from artiplan.semantics.walks import SOURCE_GLOBALS, conjuncts, expr_source, fluents_of, linear
 
 Values = tuple[float, ...]
 PFn = Callable[[Values], float]
+#: Values with the controls at the ends of their levels, and the flow there.
+Corner = tuple[Values, dict[int, float]]
 
 #: The comparison an operator reads, with the operator flipped under a negation.
 _FLIP = {">": "<=", ">=": "<", "<": ">=", "<=": ">"}
@@ -77,6 +87,15 @@ class _Cond:
 
 
 @dataclass
+class Steering:
+    """What a conjunction's motion goals ask of the controls in one state: steps in all, and
+    the actions that move a control the way it must go first."""
+
+    steps: int = 0
+    actions: set[int] = field(default_factory=set)
+
+
+@dataclass
 class _Op:
     """A relaxed operator: an action, an event or one fluent a process moves (with a sign)."""
 
@@ -90,6 +109,8 @@ class _Op:
     rate: PFn | None = None
     sign: int = 0
     reads: frozenset[int] = frozenset()  # process: the fluents its rate reads
+    controls: tuple[int, ...] = ()  # process: controls its rate or the rates it reads read
+    motion: tuple[MotionGoal, ...] = ()  # action: the position/speed goals of its precondition
 
 
 class NumericHeuristic:
@@ -136,6 +157,7 @@ class NumericHeuristic:
             fn, used = compile_condition(conj, ct.comps, ct.tol, snap=ct.strict)
             self.groups.append(GoalGroup(fn, used))
             self.goal_nodes.append(self._parts(conj) or ())
+        self.goal_motion = self._second_order()
         # which operators may move which conditions (static: by the fluents they touch)
         readers: dict[int, list[int]] = {}
         for k, c in enumerate(self.conds):
@@ -185,6 +207,32 @@ class NumericHeuristic:
                 self.users[node].append(i)
 
     # ------------------------------------------------------------------------------- setup
+    def _second_order(self) -> list[tuple[MotionGoal, ...]]:
+        """Controls and motions (:mod:`artiplan.search.motion`): the controls each process
+        operator's time reads, the motion goals of each action; returns the goal groups'."""
+        task = self.ct.task
+        self.controls = controls = find_controls(task)
+        motions = find_motions(task, controls)
+        movers: dict[int, set[int]] = {}
+        for p in self.ct.processes:
+            for fluent, rate, _ in p.rates:
+                movers.setdefault(fluent, set()).update(fluents_of(rate))
+        for o in self.ops:
+            if o.kind == "process":
+                second = set().union(*(movers.get(j, set()) for j in o.reads))
+                o.controls = tuple(sorted(f for f in o.reads | second if f in controls))
+        if not motions:
+            return [() for _ in self.goal_nodes]
+        limits = speed_limits(task, {m.y for m in motions.values()})
+
+        def goals(cond: Condition) -> tuple[MotionGoal, ...]:
+            return tuple(motion_goals(conjuncts(cond), self._cond, motions, limits))
+
+        for o in self.ops:
+            if o.kind == "action":
+                o.motion = goals(task.actions[o.index].precondition)
+        return [goals(conj) for conj in conjuncts(task.goal)]
+
     def _add_instant(self, kind: str, index: int, pre: Condition, eff: Effect) -> None:
         parts = self._parts(pre)
         if parts is None:
@@ -314,12 +362,14 @@ class NumericHeuristic:
                 slope = self._slope(k, o.fluent, values)
                 if slope * o.sign * way <= 0.0:
                     return None
-                r = abs(slope) * o.rate(values) * o.sign
-                r2 = abs(slope) * self._rate_change(o, values, flow) * o.sign
-                t = _time_to(need, r, r2) if math.isfinite(r + r2) else None
-                if t is None or t != t:
-                    return 1.0, 0.0  # the rate turns the right way only later: time unknown
-                return tw * t, t
+                t = self._process_time(o, need, slope, values, flow)
+                # the time label: at the most favourable levels of the controls (an action
+                # may yet raise the acceleration), so a deadline prunes only what is lost
+                best = self._best_time(o, need, slope, values, active, corners) \
+                    if o.controls else None
+                if t is None:  # the rate turns the right way only later
+                    return 1.0, best or 0.0
+                return tw * t, t if best is None else min(t, best)
             key = o.index if o.kind == "action" else -1 - o.index
             if key not in after:
                 src = ct.actions[o.index] if o.kind == "action" else ct.events[o.index]
@@ -339,6 +389,8 @@ class NumericHeuristic:
                 return None
             return float(min(MAX_REPEATS, math.ceil(need / abs(delta) - 1e-9))), 0.0
 
+        corners: dict[tuple[int, ...], list[Corner]] = {}
+        steer: dict[int, Steering] = {}  # op -> how its motion goals steer the controls
         remaining = [len(o.pre) for o in self.ops]
         acc = [0.0] * len(self.ops)
         heap: list[tuple[float, int]] = [(0.0, i) for i, c in enumerate(cost) if c == 0.0]
@@ -347,6 +399,12 @@ class NumericHeuristic:
             o = self.ops[i]
             c0 = acc[i]
             t0 = max((need_t[q] for q in o.pre), default=0.0)
+            if o.motion:
+                joint = self._motion(o.motion, o.pre, values, active, cost, left,
+                                     steer.setdefault(i, Steering()))
+                if joint is None:
+                    return
+                c0, t0 = c0 + joint[0], max(t0, joint[1])
             if left and t0 > 0.0:
                 # a deadline among its preconditions passes before the others can hold
                 for q in o.pre:
@@ -370,7 +428,72 @@ class NumericHeuristic:
             if not o.pre:
                 fire(i)
         propagate(heap, cost, self.users, remaining, acc, fire)
-        return self._result(cost, supp, acc, active, facts, values, need_t, left)
+        return self._result(cost, supp, acc, active, facts, values, need_t, left, steer)
+
+    def _motion(self, goals: tuple[MotionGoal, ...], pre: tuple[int, ...], values: Values,
+                active: tuple[int, ...], cost: list[float], left: dict[int, float],
+                steer: Steering) -> tuple[float, float] | None:
+        """(extra cost, time [s]) of a conjunction's motion goals, costed jointly (control
+        steps plus the time's weight) instead of one comparison at a time, by the deadlines
+        among ``pre``; None if one cannot be made by them. ``steer`` receives the steps and
+        the actions that move a control toward the level a goal needs first."""
+        base = 2 * self.n
+        deadline = min((left[q - base] for q in pre if q - base in left), default=math.inf)
+        extra, time = 0.0, 0.0
+        for g in goals:
+            y = g.motion.y
+
+            def accel(v: Values, y: int = y, k: float = g.motion.k) -> float:
+                return k * self._flow(v, active).get(y, 0.0)
+
+            est = g.estimate(values, accel, deadline)
+            if est is None:
+                continue  # the motion does not run: the comparisons as they are
+            if est.time == math.inf:
+                return None
+            extra += est.steps + self.config.time_weight * est.time - \
+                sum(cost[base + k] for k in g.conds)
+            time = max(time, est.time)
+            steer.steps += est.steps
+            u = g.motion.control
+            at = u.index(values[u.fluent])
+            if est.first != at:
+                steer.actions.update(u.raise_by if est.first > at else u.lower_by)
+        return extra, time
+
+    def _applicable(self, a: int, facts: int, values: Values) -> bool:
+        act = self.ct.actions[a]
+        return not facts & act.forb and not act.req & ~facts and act.pre(facts, values)
+
+    def _process_time(self, o: _Op, need: float, slope: float, values: Values,
+                      flow: dict[int, float]) -> float | None:
+        """Time [s] process operator ``o`` takes to move a condition of slope ``slope`` by
+        ``need`` at ``values`` (rate and its change along ``flow``); None: not that way."""
+        assert o.rate is not None
+        r = abs(slope) * o.rate(values) * o.sign
+        r2 = abs(slope) * self._rate_change(o, values, flow) * o.sign
+        t = _time_to(need, r, r2) if math.isfinite(r + r2) else None
+        return None if t is None or t != t else t
+
+    def _best_time(self, o: _Op, need: float, slope: float, values: Values,
+                   active: tuple[int, ...], cache: dict[tuple[int, ...], list[Corner]]
+                   ) -> float | None:
+        """The least time [s] of ``o`` with its controls at either end of their levels (the
+        corners' values and flows are computed once per state, in ``cache``)."""
+        found = cache.get(o.controls)
+        if found is None:
+            found = []
+            for ends in itertools.product(*((self.controls[u].levels[0],
+                                             self.controls[u].levels[-1])
+                                            for u in o.controls[:3])):
+                moved = list(values)
+                for u, at in zip(o.controls, ends, strict=False):
+                    moved[u] = at
+                found.append((tuple(moved), self._flow(tuple(moved), active)))
+            cache[o.controls] = found
+        times = [t for v, f in found if (t := self._process_time(o, need, slope, v, f))
+                 is not None]
+        return min(times, default=None)
 
     def _time_left(self, k: int, pv: float, values: Values, flow: dict[int, float]) -> float:
         """Time [s] until deadline condition ``k`` (it holds now) fails along the flow."""
@@ -384,7 +507,7 @@ class NumericHeuristic:
 
     def _result(self, cost: list[float], supp: list[int], acc: list[float],
                 active: tuple[int, ...], facts: int, values: Values, need_t: list[float],
-                left: dict[int, float]) -> Evaluation:
+                left: dict[int, float], steer: dict[int, Steering]) -> Evaluation:
         """``h``, preferred actions and waits from the costs (a goal conjunct that needs
         longer than a deadline of the goal leaves counts as unreachable)."""
         base = 2 * self.n
@@ -408,11 +531,13 @@ class NumericHeuristic:
             i = supp[node]
             seen.add(i)
             o = self.ops[i]
+            way = steer.get(i, Steering())
             if o.kind == "action":
                 late = [q for q in o.pre if cost[q] > 0.0]
-                if all(q >= 2 * self.n and supp[q] >= 0 and ready_process(supp[q])
-                       for q in late):
+                if not way.steps and all(q >= 2 * self.n and supp[q] >= 0 and
+                                         ready_process(supp[q]) for q in late):
                     preferred.add(o.index)  # applicable, or its numbers are on their way
+            preferred.update(a for a in way.actions if self._applicable(a, facts, values))
             for q in o.pre:
                 visit(q)
 
@@ -424,9 +549,16 @@ class NumericHeuristic:
             c = sum(cost[q] for q in nodes) if nodes else 1.0
             if any(need_t[q] > goal_left for q in nodes):
                 c = math.inf
+            toward = Steering()
+            if self.goal_motion[gi] and c < math.inf:
+                joint = self._motion(self.goal_motion[gi], nodes, values, active, cost, left,
+                                     toward)
+                c = math.inf if joint is None or joint[1] > goal_left else c + joint[0]
+                preferred.update(a for a in toward.actions if self._applicable(a, facts, values))
             h += self.config.unreachable_cost if c == math.inf else c
             late = [q for q in nodes if cost[q] > 0.0]
-            if late and all(supp[q] >= 0 and ready_process(supp[q]) for q in late):
+            if late and not toward.steps and all(supp[q] >= 0 and ready_process(supp[q])
+                                                 for q in late):
                 waits.append(gi)
             else:
                 needed = True
