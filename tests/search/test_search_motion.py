@@ -9,13 +9,8 @@ import pytest
 
 from artiplan.pddl import load_task
 from artiplan.search.api import PlanStatus, plan
-from artiplan.search.motion import (
-    box_time,
-    find_controls,
-    find_motions,
-    point_time,
-    speed_limits,
-)
+from artiplan.search.motion import find_controls, find_motions, speed_limits
+from artiplan.search.profile import Rate, box_profile, point_time, profile
 from artiplan.search.numeric import NumericHeuristic
 from artiplan.semantics import Kernel, compile_task
 from artiplan.semantics.validator import validate
@@ -74,43 +69,63 @@ def test_controls_are_the_fluents_actions_step_between_bounds() -> None:
 
 
 def test_point_time_is_the_bang_bang_optimum() -> None:
-    # rest to rest over 50 with +-2: 2 * sqrt(50 / 2)
-    t, up = point_time(50.0, 0.0, 0.0, 2.0, 2.0)
-    assert t == pytest.approx(10.0) and up
-    # a cap at 4: 2 s up, 2 s down (8 m), 42 m cruising
-    t, _ = point_time(50.0, 0.0, 0.0, 2.0, 2.0, vhi=4.0)
-    assert t == pytest.approx(4.0 + 42.0 / 4.0)
+    # rest to rest over 50 with +-2: 2 * sqrt(50 / 2), switching half way
+    t, up, first = point_time(50.0, 0.0, 0.0, 2.0, 2.0)
+    assert t == pytest.approx(10.0) and up and first == pytest.approx(5.0)
+    # a cap at 4: 2 s up (then a cruise needs another level), 2 s down, 42 m cruising
+    t, _, first = point_time(50.0, 0.0, 0.0, 2.0, 2.0, vhi=4.0)
+    assert t == pytest.approx(4.0 + 42.0 / 4.0) and first == pytest.approx(2.0)
     # moving at 10 toward a point 10 ahead, braking at 1: overshoot by 40, then come back
-    t, up = point_time(10.0, 10.0, 0.0, 1.0, 1.0)
+    t, up, _ = point_time(10.0, 10.0, 0.0, 1.0, 1.0)
     assert t == pytest.approx(10.0 + 2.0 * math.sqrt(40.0)) and not up
     # cannot accelerate: cruise, then brake
-    t, _ = point_time(100.0, 18.0, 0.0, 0.0, 3.0)
+    t, _, first = point_time(100.0, 18.0, 0.0, 0.0, 3.0)
     assert t == pytest.approx((100.0 - 54.0) / 18.0 + 6.0, rel=1e-6)
+    assert first == pytest.approx((100.0 - 54.0) / 18.0, rel=1e-6)
 
 
-def test_box_time_takes_the_nearest_end() -> None:
-    t, _ = box_time(0.0, 0.0, (49.0, 51.0), (-0.2, 0.2), 2.0, 2.0)
-    assert t < point_time(50.0, 0.0, 0.0, 2.0, 2.0)[0]
-    assert box_time(50.0, 0.1, (49.0, 51.0), (-0.2, 0.2), 2.0, 2.0)[0] == 0.0
+def test_a_tabulated_rate_agrees_with_the_closed_form_and_sees_drag() -> None:
+    up = Rate(lambda w: 2.0 + 1e-9 * w * w, -20.0, 20.0)  # nearly constant: tabulated
+    down = Rate(lambda w: -2.0 - 1e-9 * w * w, -20.0, 20.0)
+    assert up.const is None
+    t, up_first, first = profile(50.0, 0.0, 0.0, up, down)
+    assert t == pytest.approx(10.0, rel=1e-3) and up_first and first == pytest.approx(5.0, 1e-3)
+    # drag c = 0.02 at a = 1: terminal speed 1/sqrt(0.02) = 7.07; the level holds it
+    drag = Rate(lambda w: 1.0 - 0.02 * w * w if w > 0 else 1.0, -20.0, 20.0)
+    assert drag.reach(0.0, True) == pytest.approx(math.sqrt(50.0), abs=0.2)
+    brake = Rate(lambda w: -1.0 - 0.02 * w * w if w > 0 else -1.0, -20.0, 20.0)
+    far = profile(500.0, 0.0, 0.0, drag, brake)
+    assert far.time > 500.0 / math.sqrt(50.0)  # never faster than the terminal speed
+    assert far.first > far.time - 10.0  # the level holds the cruise: brake only at the end
+    # coasting with drag alone (a = 0) never brings 10 m/s down to 0.05 in a minute
+    coast = Rate(lambda w: -0.02 * w * w if w > 0 else 0.0, -20.0, 20.0)
+    assert coast.between(10.0, 0.05)[0] > 60.0
+
+
+def test_box_profile_takes_the_nearest_end() -> None:
+    two, minus_two = Rate(lambda w: 2.0, -5, 5), Rate(lambda w: -2.0, -5, 5)
+    t = box_profile(0.0, 0.0, (49.0, 51.0), (-0.2, 0.2), two, minus_two).time
+    assert t < point_time(50.0, 0.0, 0.0, 2.0, 2.0).time
+    assert box_profile(50.0, 0.1, (49.0, 51.0), (-0.2, 0.2), two, minus_two).time == 0.0
 
 
 def test_the_estimate_asks_for_the_second_acceleration_and_sees_a_lost_deadline() -> None:
     task = load_task(CAR, TWICE)
     ct = compile_task(task, strict=True)
     kernel = Kernel(ct)
-    heur = NumericHeuristic(ct)
+    heur = NumericHeuristic(ct, active_fn=kernel.active)
     (goal,) = next(o.motion for o in heur.ops if o.motion)
     facts, values, active = kernel.settle(0.0, ct.init_facts, ct.init_values, [])
 
     def accel(v: tuple[float, ...]) -> float:
-        return heur._flow(v, active).get(goal.motion.y, 0.0)
+        return heur._flow(v, kernel.active(facts, v)).get(goal.motion.y, 0.0)
 
-    est = goal.estimate(values, accel, 11.0)
+    est = goal.estimate(values, accel, 11.0, facts)
     assert est is not None
     # up to +2 (two steps), down to -2 (four): a = 1 cannot make 11 s
     assert est.steps == 6 and est.time <= 11.0
     assert goal.motion.control.levels[est.first] == 2.0
-    late = goal.estimate(values, accel, 9.0)  # 10 s at the least
+    late = goal.estimate(values, accel, 9.0, facts)  # 10 s at the least
     assert late is not None and late.time == math.inf
     # the relaxation prefers accelerating, and a state with a = 1 costs more than a = 2
     ev = heur.evaluate(facts, values, active)

@@ -37,6 +37,7 @@ from artiplan.pddl.task import (
     NumExpr,
     Task,
 )
+from artiplan.search.profile import Profile, Rate, box_profile
 from artiplan.semantics.compiled import written_fluents
 from artiplan.semantics.walks import conjuncts, fluents_of, linear
 
@@ -45,8 +46,6 @@ Values = tuple[float, ...]
 MAX_LEVELS = 64
 #: An estimate longer than this [s] counts as no way (the kernel's horizon is an hour).
 HORIZON = 3600.0
-#: Accelerations below this [1/s^2] count as none (the speed can only cruise).
-FLOOR = 1e-9
 
 
 @dataclass(frozen=True)
@@ -236,78 +235,16 @@ def find_motions(task: Task, controls: dict[int, Control]) -> dict[int, Motion]:
 # ------------------------------------------------------------------------------- the profile
 
 
-def point_time(dist: float, y0: float, yf: float, al: float, be: float,
-               vhi: float = math.inf, vlo: float = -math.inf) -> tuple[float, bool]:
-    """Least time [s] to move ``dist`` and change the speed from ``y0`` to ``yf``, with the
-    speed's rate in [-be, al] (al, be >= 0) and the speed within [vlo, vhi] (a cruise at a
-    cap), and whether it accelerates first. Bang-bang with one switch: accelerate then brake
-    (a peak), or brake then accelerate (a valley, through reverse if need be); inf if neither
-    exists."""
-    al, be = max(al, FLOOR), max(be, FLOOR)
-    best = (math.inf, True)
-    s2 = (2.0 * al * be * dist + be * y0 * y0 + al * yf * yf) / (al + be)
-    top = max(y0, yf)
-    if s2 >= 0.0:
-        s = math.sqrt(s2)
-        vp = -s if -s >= top - 1e-12 else s if s >= top - 1e-12 else None
-        if vp is not None:
-            if vp > vhi >= top and vhi > 0.0:
-                cruise = dist - (vhi * vhi - y0 * y0) / (2 * al) - (vhi * vhi - yf * yf) / (2 * be)
-                best = ((vhi - y0) / al + (vhi - yf) / be + cruise / vhi, True)
-            else:
-                best = ((vp - y0) / al + (vp - yf) / be, True)
-    s2 = (al * y0 * y0 + be * yf * yf - 2.0 * al * be * dist) / (al + be)
-    low = min(y0, yf)
-    if s2 >= 0.0:
-        s = math.sqrt(s2)
-        vm = s if s <= low + 1e-12 else -s if -s <= low + 1e-12 else None
-        if vm is not None:
-            if vm < vlo <= low and vlo < 0.0:
-                cruise = dist - (y0 * y0 - vlo * vlo) / (2 * be) - (yf * yf - vlo * vlo) / (2 * al)
-                t = (y0 - vlo) / be + (yf - vlo) / al + cruise / vlo
-            else:
-                t = (y0 - vm) / be + (yf - vm) / al
-            best = min(best, (t, False))
-    return best
-
-
-def box_time(x0: float, y0: float, box: tuple[float, float], band: tuple[float, float],
-             al: float, be: float, cap: tuple[float, float] = (-math.inf, math.inf)
-             ) -> tuple[float, bool]:
-    """Least time [s] from position ``x0`` and speed ``y0`` to a position in ``box`` with the
-    speed in ``band`` (the speed's rate in [-be, al], the speed within ``cap``), and whether it
-    accelerates first; over a few end points: the box's finite ends with the band's ends or
-    rest, and the point where bringing the speed into the band straight away ends (if that is
-    in the box)."""
-    (lo, hi), (yl, yh) = box, band
-    if lo > hi or yl > yh:
-        return math.inf, True
-    if lo <= x0 <= hi and yl <= y0 <= yh:
-        return 0.0, True
-    ends: list[tuple[float, float]] = []
-    rest = min(max(0.0, yl), yh)
-    for xf in (lo, hi):
-        if math.isfinite(xf):
-            ends.extend((xf, yf) for yf in {yl, yh, rest} if math.isfinite(yf))
-    yf = min(max(y0, yl), yh)
-    rate = be if y0 > yf else al
-    if rate > FLOOR:
-        t = abs(y0 - yf) / rate
-        xf = x0 + 0.5 * (y0 + yf) * t
-        if lo <= xf <= hi:
-            ends.append((xf, yf))
-    return min((point_time(xf - x0, y0, yf, al, be, cap[1], cap[0]) for xf, yf in ends),
-               default=(math.inf, True))
-
-
 @dataclass(frozen=True)
 class Estimate:
-    """The way into a motion goal's box: control steps, time [s], and the level the control
-    should go to first (its index; the current one if no step is due first)."""
+    """The way into a motion goal's box: control steps, time [s], the level the control
+    should go to first (its index; the current one if no step is due first), and when [s]
+    the profile next changes the control if no step is due now (0 otherwise)."""
 
     steps: int
     time: float
     first: int
+    hold: float = 0.0
 
 
 @functools.lru_cache(maxsize=256)
@@ -328,91 +265,72 @@ class MotionGoal:
     box: tuple[float, float]
     band: tuple[float, float]  # of x's rate (k * y)
     cap: tuple[float, float]  # of x's rate
-    #: terminal speeds by (level, the other fluents the rates read): where drag stops a level
-    #: accelerating (up) or braking (down)
-    _terminal: dict[tuple[int, bool, tuple[float, ...]], float] = field(
-        default_factory=dict, compare=False, repr=False)
+    #: the speed's rate per (level, context, the other fluents the rates read)
+    _rates: dict[tuple[object, ...], Rate] = field(default_factory=dict, compare=False,
+                                                   repr=False)
 
-    def terminal(self, values: Values, accel: Callable[[Values], float], level: int,
-                 up: bool) -> float:
-        """The speed of x (``k y``) at which the control at level ``level`` stops
-        accelerating (``up``) or braking, beyond the current one (+-inf: never; drag makes it
-        finite). Found by doubling and bisection, once per level and values of the other
-        fluents the rates read."""
+    def rate(self, values: Values, accel: Callable[[Values], float], level: int,
+             context: object = None) -> Rate:
+        """The speed's rate at control level ``level`` as a function of the speed (x's rate
+        ``k y``), the other values as in ``values`` (tabulated once per level, ``context``:
+        what else ``accel`` depends on, and values of the other fluents the rates read)."""
         m = self.motion
-        key = (level, up, tuple(values[j] for j in m.reads))
-        found = self._terminal.get(key)
-        if found is not None:
-            return found
-        moved = list(values)
-        moved[m.control.fluent] = m.control.levels[level]
-        sign = 1.0 if up else -1.0
+        key = (level, context, tuple(values[j] for j in m.reads))
+        found = self._rates.get(key)
+        if found is None:
+            moved = list(values)
+            moved[m.control.fluent] = m.control.levels[level]
 
-        def pushes(w: float) -> bool:
-            moved[m.y] = w / m.k
-            return accel(tuple(moved)) * sign > 0.0
+            def at(w: float) -> float:
+                moved[m.y] = w / m.k
+                return accel(tuple(moved))
 
-        w0 = m.k * values[m.y]
-        lo, span = w0, 1.0
-        while pushes(w0 + sign * span):
-            lo = w0 + sign * span
-            span *= 2.0
-            if span > 1e6:
-                self._terminal[key] = sign * math.inf
-                return sign * math.inf
-        hi = w0 + sign * span
-        for _ in range(30):
-            mid = 0.5 * (lo + hi)
-            lo, hi = (mid, hi) if pushes(mid) else (lo, mid)
-        self._terminal[key] = hi
-        return hi
+            span = max((abs(b) for b in (*self.cap, *self.band) if math.isfinite(b)),
+                       default=1.0)
+            found = self._rates[key] = Rate(at, min(self.band[0], -span),
+                                            max(self.band[1], span))
+        return found
 
     def estimate(self, values: Values, accel: Callable[[Values], float],
-                 deadline: float = math.inf) -> Estimate | None:
+                 deadline: float = math.inf, context: object = None) -> Estimate | None:
         """The way into the box and band with the fewest control steps (then the least time)
         that takes at most ``deadline`` [s]: time ``inf`` if there is none; None if the motion
         does not run (no level moves the speed: the estimate does not apply).
 
-        ``accel(values)`` is the rate of x's rate at ``values`` (the control set to a level).
+        ``accel(values)`` is the rate of x's rate at ``values`` (the control set to a level),
+        ``context`` what else it depends on (hashable: the running processes).
         The control goes to an accelerating level and a braking one, in either order; a
         step is one change of the control by its step."""
         m = self.motion
         u = m.control
         w0 = m.k * values[m.y]
-        acc: list[float] = []
-        for level in u.levels:
-            moved = list(values)
-            moved[u.fluent] = level
-            acc.append(accel(tuple(moved)))
-        if not any(acc):
+        rates = [self.rate(values, accel, i, context) for i in range(len(u.levels))]
+        acc = [r.at(w0) for r in rates]
+        if not any(acc) and all(r.const is not None for r in rates):
             return None
         limit = min(deadline, HORIZON)
         c = u.index(values[u.fluent])
 
-        def time(i: int, j: int) -> tuple[float, bool]:
-            cap = self.cap
-            if acc[i] > 0.0:
-                cap = (cap[0], min(cap[1], self.terminal(values, accel, i, True)))
-            if acc[j] < 0.0:
-                cap = (max(cap[0], self.terminal(values, accel, j, False)), cap[1])
-            return box_time(values[m.x], w0, self.box, self.band, max(acc[i], 0.0),
-                            max(-acc[j], 0.0), cap)
+        def time(i: int, j: int) -> Profile:
+            return box_profile(values[m.x], w0, self.box, self.band, rates[i], rates[j],
+                               self.cap)
 
         n = len(acc)
-        if time(max(range(n), key=acc.__getitem__), min(range(n), key=acc.__getitem__))[0] \
+        if time(max(range(n), key=acc.__getitem__), min(range(n), key=acc.__getitem__)).time \
                 > limit:
             return Estimate(0, math.inf, c)
         best = Estimate(0, math.inf, c)
         for least, i, j in _pairs(n, c):
             if least > best.steps and best.time < math.inf:
                 break
-            t, up = time(i, j)
-            if t > limit:
+            prof = time(i, j)
+            if prof.time > limit:
                 continue
-            first, then = (i, j) if up else (j, i)
+            first, then = (i, j) if prof.up else (j, i)
             steps = abs(first - c) + abs(then - first)
-            if best.time == math.inf or (steps, t) < (best.steps, best.time):
-                best = Estimate(steps, t, first)
+            if best.time == math.inf or (steps, prof.time) < (best.steps, best.time):
+                hold = prof.first if first == c and steps else 0.0
+                best = Estimate(steps, prof.time, first, hold)
         return best
 
 
@@ -484,5 +402,5 @@ def motion_goals(conjunction: Sequence[Condition], cond_index: Callable[[Compari
     return out
 
 
-__all__ = ["Control", "Estimate", "Motion", "MotionGoal", "SpeedLimit", "box_time",
-           "find_controls", "find_motions", "motion_goals", "point_time", "speed_limits"]
+__all__ = ["Control", "Estimate", "Motion", "MotionGoal", "SpeedLimit", "find_controls",
+           "find_motions", "motion_goals", "speed_limits"]

@@ -93,6 +93,7 @@ class Steering:
 
     steps: int = 0
     actions: set[int] = field(default_factory=set)
+    hold: float = math.inf  # how long [s] the controls stay as they are before the next step
 
 
 @dataclass
@@ -120,6 +121,7 @@ class NumericHeuristic:
                  active_fn: Callable[[int, Values], tuple[int, ...]] | None = None) -> None:
         self.ct = ct
         self.config = config or HeuristicConfig()
+        self.active_fn = active_fn
         self.n = n = len(ct.task.facts)
         self.zero = ct.tol.zero
         self.conds: list[_Cond] = []
@@ -400,7 +402,7 @@ class NumericHeuristic:
             c0 = acc[i]
             t0 = max((need_t[q] for q in o.pre), default=0.0)
             if o.motion:
-                joint = self._motion(o.motion, o.pre, values, active, cost, left,
+                joint = self._motion(o.motion, o.pre, facts, values, active, cost, left,
                                      steer.setdefault(i, Steering()))
                 if joint is None:
                     return
@@ -430,9 +432,9 @@ class NumericHeuristic:
         propagate(heap, cost, self.users, remaining, acc, fire)
         return self._result(cost, supp, acc, active, facts, values, need_t, left, steer)
 
-    def _motion(self, goals: tuple[MotionGoal, ...], pre: tuple[int, ...], values: Values,
-                active: tuple[int, ...], cost: list[float], left: dict[int, float],
-                steer: Steering) -> tuple[float, float] | None:
+    def _motion(self, goals: tuple[MotionGoal, ...], pre: tuple[int, ...], facts: int,
+                values: Values, active: tuple[int, ...], cost: list[float],
+                left: dict[int, float], steer: Steering) -> tuple[float, float] | None:
         """(extra cost, time [s]) of a conjunction's motion goals, costed jointly (control
         steps plus the time's weight) instead of one comparison at a time, by the deadlines
         among ``pre``; None if one cannot be made by them. ``steer`` receives the steps and
@@ -444,9 +446,11 @@ class NumericHeuristic:
             y = g.motion.y
 
             def accel(v: Values, y: int = y, k: float = g.motion.k) -> float:
-                return k * self._flow(v, active).get(y, 0.0)
+                running = active if self.active_fn is None else self.active_fn(facts, v)
+                return k * self._flow(v, running).get(y, 0.0)
 
-            est = g.estimate(values, accel, deadline)
+            est = g.estimate(values, accel, deadline,
+                             active if self.active_fn is None else facts)
             if est is None:
                 continue  # the motion does not run: the comparisons as they are
             if est.time == math.inf:
@@ -455,6 +459,8 @@ class NumericHeuristic:
                 sum(cost[base + k] for k in g.conds)
             time = max(time, est.time)
             steer.steps += est.steps
+            if est.hold > 0.0:
+                steer.hold = min(steer.hold, est.hold)
             u = g.motion.control
             at = u.index(values[u.fluent])
             if est.first != at:
@@ -520,6 +526,7 @@ class NumericHeuristic:
         preferred: set[int] = set()
         seen: set[int] = set()
         running = set(active)
+        holds: list[float] = []  # the motion goals' waits before their next control step
 
         def ready_process(i: int) -> bool:
             o = self.ops[i]
@@ -532,6 +539,7 @@ class NumericHeuristic:
             seen.add(i)
             o = self.ops[i]
             way = steer.get(i, Steering())
+            holds.append(way.hold)
             if o.kind == "action":
                 late = [q for q in o.pre if cost[q] > 0.0]
                 if not way.steps and all(q >= 2 * self.n and supp[q] >= 0 and
@@ -551,10 +559,11 @@ class NumericHeuristic:
                 c = math.inf
             toward = Steering()
             if self.goal_motion[gi] and c < math.inf:
-                joint = self._motion(self.goal_motion[gi], nodes, values, active, cost, left,
-                                     toward)
+                joint = self._motion(self.goal_motion[gi], nodes, facts, values, active, cost,
+                                     left, toward)
                 c = math.inf if joint is None or joint[1] > goal_left else c + joint[0]
                 preferred.update(a for a in toward.actions if self._applicable(a, facts, values))
+                holds.append(toward.hold)
             h += self.config.unreachable_cost if c == math.inf else c
             late = [q for q in nodes if cost[q] > 0.0]
             if late and not toward.steps and all(supp[q] >= 0 and ready_process(supp[q])
@@ -565,7 +574,9 @@ class NumericHeuristic:
             for q in nodes:
                 visit(q)
         order = tuple(sorted(preferred))
-        return Evaluation(h, order, tuple(waits), needed, unsat)
+        hold = min(holds, default=math.inf)
+        return Evaluation(h, order, tuple(waits), needed, unsat,
+                          hold if math.isfinite(hold) else 0.0)
 
 
 def _time_to(need: float, r: float, r2: float) -> float | None:
