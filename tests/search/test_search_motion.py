@@ -10,8 +10,8 @@ import pytest
 from artiplan.pddl import load_task
 from artiplan.search.api import PlanStatus, plan
 from artiplan.search.motion import find_controls, find_motions, speed_limits
-from artiplan.search.profile import Rate, box_profile, point_time, profile
 from artiplan.search.numeric import NumericHeuristic
+from artiplan.search.profile import Rate, box_profile, point_time, profile
 from artiplan.semantics import Kernel, compile_task
 from artiplan.semantics.validator import validate
 
