@@ -16,18 +16,23 @@ to the fact literals, and computes additive costs (``hadd``, as ENHSP's default)
   comparison ``rate > 0`` (or ``< 0``): the chain ``d`` <- ``v`` <- ``a`` <- ``accelerate``.
 
 Every change is evaluated in the current state (a relaxation, not a proof: the search stays
-complete). Preferred operators are the applicable actions of the relaxed plan, and the actions
-whose facts hold while a running process brings their numbers (the search waits for those).
+complete), except where a position is steered through its speed by a control (a car's
+acceleration; :mod:`artiplan.search.secondorder`): times then take the most favourable control
+levels, and a conjunction wanting the position in a box with the speed in a band is costed
+jointly, by the least motion profile and the control steps it needs by its deadline.
+Preferred operators are the applicable actions of the relaxed plan, and the actions whose facts
+hold while a running process brings their numbers (the search waits for those); a motion goal
+adds the actions that move its control the way it must go first, and a wait (``hold``) for as
+long as its profile keeps the controls as they are.
 """
 
 from __future__ import annotations
 
 import heapq
-import itertools
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import Literal
 
 from artiplan.pddl.task import (
@@ -42,20 +47,13 @@ from artiplan.pddl.task import (
     Truth,
 )
 from artiplan.search.heuristic import Evaluation, GoalGroup, HeuristicConfig, propagate
-from artiplan.search.motion import (
-    MotionGoal,
-    find_controls,
-    find_motions,
-    motion_goals,
-    speed_limits,
-)
+from artiplan.search.motion import MotionGoal
+from artiplan.search.secondorder import Corner, SecondOrder, Steering, applicable
 from artiplan.semantics.compiled import CompiledTask, compile_condition
 from artiplan.semantics.walks import SOURCE_GLOBALS, conjuncts, expr_source, fluents_of, linear
 
 Values = tuple[float, ...]
 PFn = Callable[[Values], float]
-#: Values with the controls at the ends of their levels, and the flow there.
-Corner = tuple[Values, dict[int, float]]
 
 #: The comparison an operator reads, with the operator flipped under a negation.
 _FLIP = {">": "<=", ">=": "<", "<": ">=", "<=": ">"}
@@ -87,16 +85,6 @@ class _Cond:
 
 
 @dataclass
-class Steering:
-    """What a conjunction's motion goals ask of the controls in one state: steps in all, and
-    the actions that move a control the way it must go first."""
-
-    steps: int = 0
-    actions: set[int] = field(default_factory=set)
-    hold: float = math.inf  # how long [s] the controls stay as they are before the next step
-
-
-@dataclass
 class _Op:
     """A relaxed operator: an action, an event or one fluent a process moves (with a sign)."""
 
@@ -121,7 +109,6 @@ class NumericHeuristic:
                  active_fn: Callable[[int, Values], tuple[int, ...]] | None = None) -> None:
         self.ct = ct
         self.config = config or HeuristicConfig()
-        self.active_fn = active_fn
         self.n = n = len(ct.task.facts)
         self.zero = ct.tol.zero
         self.conds: list[_Cond] = []
@@ -159,7 +146,16 @@ class NumericHeuristic:
             fn, used = compile_condition(conj, ct.comps, ct.tol, snap=ct.strict)
             self.groups.append(GoalGroup(fn, used))
             self.goal_nodes.append(self._parts(conj) or ())
-        self.goal_motion = self._second_order()
+        # the second-order terms (search/secondorder.py): controls behind process times,
+        # motion goals of actions and goal conjuncts
+        self.second = SecondOrder(task, self._flow, active_fn, self.config.time_weight, 2 * n)
+        for o in self.ops:
+            if o.kind == "process":
+                o.controls = self.second.controls_of(o.reads)
+            elif o.kind == "action":
+                o.motion = self.second.goals(task.actions[o.index].precondition, self._cond)
+        self.goal_motion = [self.second.goals(conj, self._cond)
+                            for conj in conjuncts(task.goal)]
         # which operators may move which conditions (static: by the fluents they touch)
         readers: dict[int, list[int]] = {}
         for k, c in enumerate(self.conds):
@@ -209,32 +205,6 @@ class NumericHeuristic:
                 self.users[node].append(i)
 
     # ------------------------------------------------------------------------------- setup
-    def _second_order(self) -> list[tuple[MotionGoal, ...]]:
-        """Controls and motions (:mod:`artiplan.search.motion`): the controls each process
-        operator's time reads, the motion goals of each action; returns the goal groups'."""
-        task = self.ct.task
-        self.controls = controls = find_controls(task)
-        motions = find_motions(task, controls)
-        movers: dict[int, set[int]] = {}
-        for p in self.ct.processes:
-            for fluent, rate, _ in p.rates:
-                movers.setdefault(fluent, set()).update(fluents_of(rate))
-        for o in self.ops:
-            if o.kind == "process":
-                second = set().union(*(movers.get(j, set()) for j in o.reads))
-                o.controls = tuple(sorted(f for f in o.reads | second if f in controls))
-        if not motions:
-            return [() for _ in self.goal_nodes]
-        limits = speed_limits(task, {m.y for m in motions.values()})
-
-        def goals(cond: Condition) -> tuple[MotionGoal, ...]:
-            return tuple(motion_goals(conjuncts(cond), self._cond, motions, limits))
-
-        for o in self.ops:
-            if o.kind == "action":
-                o.motion = goals(task.actions[o.index].precondition)
-        return [goals(conj) for conj in conjuncts(task.goal)]
-
     def _add_instant(self, kind: str, index: int, pre: Condition, eff: Effect) -> None:
         parts = self._parts(pre)
         if parts is None:
@@ -402,8 +372,8 @@ class NumericHeuristic:
             c0 = acc[i]
             t0 = max((need_t[q] for q in o.pre), default=0.0)
             if o.motion:
-                joint = self._motion(o.motion, o.pre, facts, values, active, cost, left,
-                                     steer.setdefault(i, Steering()))
+                joint = self.second.joint(o.motion, o.pre, facts, values, active, cost, left,
+                                          steer.setdefault(i, Steering()))
                 if joint is None:
                     return
                 c0, t0 = c0 + joint[0], max(t0, joint[1])
@@ -432,45 +402,6 @@ class NumericHeuristic:
         propagate(heap, cost, self.users, remaining, acc, fire)
         return self._result(cost, supp, acc, active, facts, values, need_t, left, steer)
 
-    def _motion(self, goals: tuple[MotionGoal, ...], pre: tuple[int, ...], facts: int,
-                values: Values, active: tuple[int, ...], cost: list[float],
-                left: dict[int, float], steer: Steering) -> tuple[float, float] | None:
-        """(extra cost, time [s]) of a conjunction's motion goals, costed jointly (control
-        steps plus the time's weight) instead of one comparison at a time, by the deadlines
-        among ``pre``; None if one cannot be made by them. ``steer`` receives the steps and
-        the actions that move a control toward the level a goal needs first."""
-        base = 2 * self.n
-        deadline = min((left[q - base] for q in pre if q - base in left), default=math.inf)
-        extra, time = 0.0, 0.0
-        for g in goals:
-            y = g.motion.y
-
-            def accel(v: Values, y: int = y, k: float = g.motion.k) -> float:
-                running = active if self.active_fn is None else self.active_fn(facts, v)
-                return k * self._flow(v, running).get(y, 0.0)
-
-            est = g.estimate(values, accel, deadline,
-                             active if self.active_fn is None else facts)
-            if est is None:
-                continue  # the motion does not run: the comparisons as they are
-            if est.time == math.inf:
-                return None
-            extra += est.steps + self.config.time_weight * est.time - \
-                sum(cost[base + k] for k in g.conds)
-            time = max(time, est.time)
-            steer.steps += est.steps
-            if est.hold > 0.0:
-                steer.hold = min(steer.hold, est.hold)
-            u = g.motion.control
-            at = u.index(values[u.fluent])
-            if est.first != at:
-                steer.actions.update(u.raise_by if est.first > at else u.lower_by)
-        return extra, time
-
-    def _applicable(self, a: int, facts: int, values: Values) -> bool:
-        act = self.ct.actions[a]
-        return not facts & act.forb and not act.req & ~facts and act.pre(facts, values)
-
     def _process_time(self, o: _Op, need: float, slope: float, values: Values,
                       flow: dict[int, float]) -> float | None:
         """Time [s] process operator ``o`` takes to move a condition of slope ``slope`` by
@@ -484,21 +415,9 @@ class NumericHeuristic:
     def _best_time(self, o: _Op, need: float, slope: float, values: Values,
                    active: tuple[int, ...], cache: dict[tuple[int, ...], list[Corner]]
                    ) -> float | None:
-        """The least time [s] of ``o`` with its controls at either end of their levels (the
-        corners' values and flows are computed once per state, in ``cache``)."""
-        found = cache.get(o.controls)
-        if found is None:
-            found = []
-            for ends in itertools.product(*((self.controls[u].levels[0],
-                                             self.controls[u].levels[-1])
-                                            for u in o.controls[:3])):
-                moved = list(values)
-                for u, at in zip(o.controls, ends, strict=False):
-                    moved[u] = at
-                found.append((tuple(moved), self._flow(tuple(moved), active)))
-            cache[o.controls] = found
-        times = [t for v, f in found if (t := self._process_time(o, need, slope, v, f))
-                 is not None]
+        """The least time [s] of ``o`` with its controls at either end of their levels."""
+        times = [t for v, f in self.second.corners(o.controls, values, active, cache)
+                 if (t := self._process_time(o, need, slope, v, f)) is not None]
         return min(times, default=None)
 
     def _time_left(self, k: int, pv: float, values: Values, flow: dict[int, float]) -> float:
@@ -545,7 +464,7 @@ class NumericHeuristic:
                 if not way.steps and all(q >= 2 * self.n and supp[q] >= 0 and
                                          ready_process(supp[q]) for q in late):
                     preferred.add(o.index)  # applicable, or its numbers are on their way
-            preferred.update(a for a in way.actions if self._applicable(a, facts, values))
+            preferred.update(a for a in way.actions if applicable(self.ct, a, facts, values))
             for q in o.pre:
                 visit(q)
 
@@ -559,10 +478,10 @@ class NumericHeuristic:
                 c = math.inf
             toward = Steering()
             if self.goal_motion[gi] and c < math.inf:
-                joint = self._motion(self.goal_motion[gi], nodes, facts, values, active, cost,
-                                     left, toward)
+                joint = self.second.joint(self.goal_motion[gi], nodes, facts, values, active,
+                                          cost, left, toward)
                 c = math.inf if joint is None or joint[1] > goal_left else c + joint[0]
-                preferred.update(a for a in toward.actions if self._applicable(a, facts, values))
+                preferred.update(a for a in toward.actions if applicable(self.ct, a, facts, values))
                 holds.append(toward.hold)
             h += self.config.unreachable_cost if c == math.inf else c
             late = [q for q in nodes if cost[q] > 0.0]
