@@ -46,6 +46,8 @@ Values = tuple[float, ...]
 MAX_LEVELS = 64
 #: An estimate longer than this [s] counts as no way (the kernel's horizon is an hour).
 HORIZON = 3600.0
+#: Share of a speed cap the wait before the next control step keeps clear of [-].
+CAP_MARGIN = 0.005
 
 
 @dataclass(frozen=True)
@@ -329,9 +331,25 @@ class MotionGoal:
             first, then = (i, j) if prof.up else (j, i)
             steps = abs(first - c) + abs(then - first)
             if best.time == math.inf or (steps, prof.time) < (best.steps, best.time):
-                hold = prof.first if first == c and steps else 0.0
+                hold = self._hold(values, w0, rates[i], rates[j], prof) \
+                    if first == c and steps else 0.0
                 best = Estimate(steps, prof.time, first, hold)
         return best
+
+    def _hold(self, values: Values, w0: float, up: Rate, down: Rate, fastest: Profile) -> float:
+        """How long the controls may stay as they are: the first phase of the profile that
+        ends in the middle of the box, at rest in the band, and keeps ``CAP_MARGIN`` inside
+        the speed caps (the fastest profile ends on the box's edge and touches the caps,
+        where a rounding of the switch misses the box or fires the event), if it exists."""
+        (lo, hi), (yl, yh) = self.box, self.band
+        if not (math.isfinite(lo) and math.isfinite(hi)):
+            return fastest.first
+        mid, rest = 0.5 * (lo + hi), min(max(0.0, yl), yh)
+        cap = tuple(c - CAP_MARGIN * c if math.isfinite(c) else c for c in self.cap)
+        centred = box_profile(values[self.motion.x], w0, (mid, mid), (rest, rest), up, down,
+                              (cap[0], cap[1]))
+        return centred.first if centred.up == fastest.up and centred.time < math.inf \
+            else fastest.first
 
 
 @dataclass(frozen=True)

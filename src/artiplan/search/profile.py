@@ -199,7 +199,8 @@ def profile(dist: float, y0: float, yf: float, up: Rate, down: Rate,
     other way round (a valley), for any rates (:func:`point_time` when both are constant):
     the switching speed by bisection, a cruise at a cap or where a level stops pushing (the
     level holds that cruise by itself: drag's terminal speed)."""
-    if up.const is not None and down.const is not None:
+    if up.const is not None and down.const is not None and up.const >= -FLOOR \
+            and down.const <= FLOOR:
         return point_time(dist, y0, yf, max(up.const, 0.0), max(-down.const, 0.0), vhi, vlo)
     peak = _one_switch(dist, y0, yf, up, down, vhi, True)
     valley = _one_switch(dist, y0, yf, down, up, vlo, False)
@@ -229,8 +230,11 @@ def _one_switch(dist: float, y0: float, yf: float, first: Rate, then: Rate, cap:
         te, de = covered(edge)
         if math.isfinite(te) and (dist - de) * sign >= 0.0:  # cruise at the edge
             cruise = (dist - de) / edge if edge else (0.0 if abs(dist - de) <= 1e-9 else -1.0)
-            if cruise < 0.0:
-                return NONE  # the cruise would have to go the other way
+            # a cruise needs the first level to push that way or hold the speed (a level
+            # that brakes where the profile should speed up cannot cruise)
+            held = first.at(y0) * sign > FLOOR or abs(first.at(y0)) <= FLOOR
+            if cruise < 0.0 or (cruise > 1e-9 and not held):
+                return NONE  # the cruise would have to go the other way, or cannot be
             rise = first.between(y0, edge)[0]
             holds = edge == reach  # the level itself keeps that speed
             return Profile(te + cruise, rising, rise + cruise if holds else rise)
