@@ -148,3 +148,42 @@ def test_a_car_that_must_accelerate_twice_is_planned() -> None:
     assert names[-1] == "stop" and result.plan.makespan <= 11.0
     report = validate(load_task(CAR, TWICE), result.plan)
     assert report.valid, report.reason
+
+
+def test_a_braking_level_cannot_cruise() -> None:
+    brake = Rate(lambda w: -3.0, -20.0, 20.0)
+    hold = Rate(lambda w: 0.0, -20.0, 20.0)
+    # from 18 at -3 the car stops in 54: exactly that far is braking only
+    assert profile(54.0, 18.0, 0.0, brake, brake).time == pytest.approx(6.0)
+    # farther needs a level that holds the speed first; braking all along cannot get there
+    assert profile(100.0, 18.0, 0.0, brake, brake).time == math.inf
+    assert profile(100.0, 18.0, 0.0, hold, brake).time == pytest.approx(46.0 / 18.0 + 6.0)
+
+
+def test_the_relaxation_asks_for_a_wait_until_the_switch() -> None:
+    # two accelerations done: at +-2 over 50 m the car speeds up for 5 s, then brakes
+    task = load_task(CAR, TWICE)
+    ct = compile_task(task, strict=True)
+    kernel = Kernel(ct)
+    heur = NumericHeuristic(ct, active_fn=kernel.active)
+    a = task.fluents.index("(a)")
+    values = list(ct.init_values)
+    values[a] = 2.0
+    facts, state, active = kernel.settle(0.0, ct.init_facts, tuple(values), [])
+    ev = heur.evaluate(facts, state, active)
+    assert ev.hold == pytest.approx(5.0, abs=0.05)
+    assert not ev.preferred or {ct.actions[i].name for i in ev.preferred} <= {"decelerate"}
+
+
+def test_a_car_with_drag_is_planned_in_few_expansions() -> None:
+    from pathlib import Path
+
+    family = Path(__file__).parents[2] / "benchmarks" / "pddlplus" / "car_drag"
+    domain, prob = family / "domain.pddl", family / "p05.pddl"
+    result = plan(domain, prob, time_limit=60)
+    assert result.status is PlanStatus.SOLVED, result.message
+    assert result.plan is not None and result.stats.expanded <= 200
+    names = [a.name for a in result.plan.actions]
+    assert names.count("accelerate") >= 2 and names[-1] == "stop"
+    report = validate(load_task(domain.read_text(), prob.read_text()), result.plan)
+    assert report.valid, report.reason
