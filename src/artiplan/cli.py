@@ -53,7 +53,12 @@ def process_start() -> float:
 REPORT_URL = "the project's issue tracker (include the command line and the traceback above)"
 
 
-def build_parser() -> tuple[argparse.ArgumentParser, dict[str, argparse.ArgumentParser]]:
+def build_parser(
+    only: str | None = None,
+) -> tuple[argparse.ArgumentParser, dict[str, argparse.ArgumentParser]]:
+    """The parser and the sub-commands' parsers (empty: ``add_arguments`` fills them); with
+    ``only``, that sub-command's alone (a parser a command costs a noticeable share of a short
+    command's start)."""
     parser = argparse.ArgumentParser(
         prog="artiplan",
         description="Plan and execute the reshaping of articulated objects with PDDL+ and gravity.",
@@ -62,7 +67,8 @@ def build_parser() -> tuple[argparse.ArgumentParser, dict[str, argparse.Argument
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     subparsers = {}
     for name, (_module, help_text) in COMMANDS.items():
-        subparsers[name] = sub.add_parser(name, help=help_text, description=help_text)
+        if only is None or name == only:
+            subparsers[name] = sub.add_parser(name, help=help_text, description=help_text)
     return parser, subparsers
 
 
@@ -83,9 +89,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     once its output is flushed (see ``QUICK_EXIT``)."""
     argv_is_process = argv is None
     argv = list(sys.argv[1:] if argv is None else argv)
-    parser, subparsers = build_parser()
-    # Find the sub-command first so only its module is imported.
+    # Find the sub-command first so only its module is imported, and only its parser built:
+    # all of them only for the top-level help and errors (an option before the command, an
+    # unknown command), which list every command.
     name = next((a for a in argv if not a.startswith("-")), None)
+    alone = name in COMMANDS and argv.index(name) == 0
+    parser, subparsers = build_parser(name if alone else None)
     if name in COMMANDS:
         module = _load(name)
         if module is None:

@@ -8,10 +8,10 @@ excluded from equality, so ``parse(write(tree)) == tree`` holds.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Literal
 
 from artiplan.errors import SourceLocation
+from artiplan.records import dataclass, field
 
 
 def _loc() -> SourceLocation | None:

@@ -14,8 +14,9 @@ extend it by adding fields with defaults, never by renaming.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
 from typing import Literal
+
+from artiplan.records import dataclass, field
 
 # --------------------------------------------------------------------------- numeric expressions
 

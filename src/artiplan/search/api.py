@@ -15,12 +15,12 @@ from __future__ import annotations
 import dataclasses
 import time
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
 from artiplan.errors import InvalidPlanError, UsageError
 from artiplan.pddl.task import Task
+from artiplan.records import dataclass
 from artiplan.search.engine import Apply, Search, SearchConfig, SearchOutcome, initial_node
 from artiplan.search.heuristic import Heuristic, HeuristicConfig, RateHeuristic
 from artiplan.search.improve import improve

@@ -20,10 +20,10 @@ import heapq
 import math
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 from typing import Protocol
 
 from artiplan.pddl.task import And, Atom, Condition, Not
+from artiplan.records import dataclass
 from artiplan.search.intervals import (
     Intervals,
     Jump,

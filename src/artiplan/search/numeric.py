@@ -26,7 +26,6 @@ import heapq
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Literal
 
 from artiplan.pddl.task import (
@@ -40,6 +39,7 @@ from artiplan.pddl.task import (
     NumExpr,
     Truth,
 )
+from artiplan.records import dataclass
 from artiplan.search.heuristic import Evaluation, GoalGroup, HeuristicConfig, propagate
 from artiplan.semantics.compiled import CompiledTask, compile_condition
 from artiplan.semantics.walks import SOURCE_GLOBALS, conjuncts, expr_source, fluents_of, linear

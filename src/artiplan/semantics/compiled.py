@@ -14,7 +14,6 @@ Compiling costs a few milliseconds per hundred operators and happens once per ta
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
 
 from artiplan.pddl.task import (
     And,
@@ -29,6 +28,7 @@ from artiplan.pddl.task import (
 )
 from artiplan.pddl.task import Atom as _Atom
 from artiplan.pddl.task import Comparison as _Comparison
+from artiplan.records import dataclass, field
 from artiplan.semantics.cache import per_task
 from artiplan.semantics.walks import (
     SOURCE_GLOBALS,

@@ -6,7 +6,9 @@ A contract shared by ``semantics`` (reading, writing, validating), ``search`` an
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from dataclasses import replace
+
+from artiplan.records import dataclass, field
 
 
 @dataclass(frozen=True)

@@ -9,12 +9,12 @@ from __future__ import annotations
 import dataclasses
 import math
 from collections.abc import Iterator, Mapping
-from dataclasses import dataclass, field
 from enum import Enum
 from typing import Any
 
 from artiplan.errors import ExitCode
 from artiplan.pddl.task import Task
+from artiplan.records import dataclass, field
 from artiplan.semantics.plan import Plan
 from artiplan.semantics.trajectory import Trajectory
 from artiplan.semantics.walks import robustness
