@@ -20,6 +20,7 @@ import pytest
 from artiplan import records
 
 DECORATORS = {"stdlib": dataclasses.dataclass, "records": records.dataclass}
+FIELDS = {dataclasses.dataclass: dataclasses.field, records.dataclass: records.field}
 OPTIONS = [{}, {"frozen": True}, {"frozen": True, "slots": True}, {"slots": True},
            {"eq": False}, {"repr": False}, {"frozen": True, "eq": False},
            {"init": False}]
@@ -27,6 +28,7 @@ OPTIONS = [{}, {"frozen": True}, {"frozen": True, "slots": True}, {"slots": True
 
 def shapes(dc: Callable[..., Any], opts: dict[str, Any]) -> dict[str, type]:
     """Classes of several shapes, each made by ``dc(**opts)``."""
+    field = FIELDS[dc]
 
     @dc(**opts)
     class Empty:
@@ -42,9 +44,9 @@ def shapes(dc: Callable[..., Any], opts: dict[str, Any]) -> dict[str, type]:
     class Node:
         name: str
         args: tuple[str, ...] = ()
-        loc: object = dataclasses.field(default=None, compare=False, repr=False)
-        tags: list[str] = dataclasses.field(default_factory=list)
-        weight: float = dataclasses.field(default=1.0, hash=False)
+        loc: object = field(default=None, compare=False, repr=False)
+        tags: list[str] = field(default_factory=list)
+        weight: float = field(default=1.0, hash=False)
 
     @dc(**opts)
     class SelfField:
@@ -87,7 +89,14 @@ def test_same_classes(opts: dict[str, Any]) -> None:
         assert [(f.name, f.default, f.repr, f.compare, f.hash) for f in dataclasses.fields(own)] \
             == [(f.name, f.default, f.repr, f.compare, f.hash) for f in dataclasses.fields(std)]
         assert (own.__hash__ is None) == (std.__hash__ is None)
-        assert own.__dataclass_params__.frozen is std.__dataclass_params__.frozen  # type: ignore[attr-defined]
+        assert repr(own.__dataclass_params__) == repr(std.__dataclass_params__)  # type: ignore[attr-defined]
+        assert [(f.name, f.type, f.default_factory, f.metadata, f.kw_only, f.init)
+                for f in dataclasses.fields(own)] \
+            == [(f.name, f.type, f.default_factory, f.metadata, f.kw_only, f.init)
+                for f in dataclasses.fields(std)]
+        assert dataclasses.is_dataclass(own) and records.names(own) == records.names(std)
+        assert {k: repr(v) for k, v in vars(own).items() if not k.startswith("__")} \
+            == {k: repr(v) for k, v in vars(std).items() if not k.startswith("__")}  # defaults
         if opts.get("init") is False:
             continue
         s1, s2, o1, o2 = std(*args), std(*args), own(*args), own(*args)
@@ -117,8 +126,15 @@ def test_same_classes(opts: dict[str, Any]) -> None:
                 assert writes[0][0] == deletes[0][0] == "FrozenInstanceError"
                 continue
             assert writes[0] == writes[1] and deletes[0] == deletes[1]
-        r1, r2 = dataclasses.replace(own(*args)), dataclasses.replace(std(*args))
-        assert dataclasses.astuple(r1) == dataclasses.astuple(r2)
+        for replace in (dataclasses.replace, records.replace):
+            r1, r2 = replace(own(*args)), replace(std(*args))
+            assert type(r1) is own and type(r2) is std
+            assert dataclasses.astuple(r1) == dataclasses.astuple(r2)
+            if dataclasses.fields(std):
+                name = dataclasses.fields(std)[0].name
+                assert getattr(replace(own(*args), **{name: 5}), name) == 5
+                assert _outcome(functools.partial(replace, own(*args), nope=1))[0] \
+                    == _outcome(functools.partial(replace, std(*args), nope=1))[0] == "TypeError"
         c1, c2 = copy.deepcopy(own(*args)), copy.deepcopy(std(*args))
         assert (c1 == own(*args)) == (c2 == std(*args))
 
@@ -140,7 +156,7 @@ def test_factories_nan_post_init_and_recursion() -> None:
 
         @dc
         class Bag:
-            items: list[Any] = dataclasses.field(default_factory=list)
+            items: list[Any] = FIELDS[dc](default_factory=list)
             seen: int = 0
 
             def __post_init__(self) -> None:
@@ -159,6 +175,24 @@ def test_factories_nan_post_init_and_recursion() -> None:
         nan = math.nan
         assert Num(nan) == Num(nan)  # the same object: tuple comparison's identity rule
         assert Num(float("nan")) != Num(float("nan"))
+
+
+def test_standard_fields_and_lazy_metadata() -> None:
+    @records.dataclass(frozen=True)
+    class Mixed:
+        a: int
+        b: list[int] = dataclasses.field(default_factory=list)  # the stdlib's field() works too
+        c: int = records.field(default=3, metadata={"unit": "s"})
+
+    assert "__dataclass_fields__" in vars(Mixed)  # a stand-in until first read
+    assert not isinstance(vars(Mixed)["__dataclass_fields__"], dict)
+    m = Mixed(1)
+    assert m.b == [] and m.c == 3 and Mixed.c == 3 and "b" not in vars(Mixed)
+    assert [f.name for f in dataclasses.fields(m)] == ["a", "b", "c"]
+    assert isinstance(vars(Mixed)["__dataclass_fields__"], dict)  # made by dataclasses now
+    assert dataclasses.fields(Mixed)[2].metadata["unit"] == "s"
+    assert dataclasses.asdict(m) == {"a": 1, "b": [], "c": 3}
+    assert records.names(Mixed) == ("a", "b", "c") == records.names(m)
 
 
 def test_explicit_methods_are_kept() -> None:
@@ -234,7 +268,7 @@ def test_unsupported_options_refused() -> None:
 
         @records.dataclass
         class Hidden:
-            x: int = dataclasses.field(default=0, init=False)
+            x: int = records.field(default=0, init=False)
 
 
 @records.dataclass(frozen=True, slots=True)

@@ -1,49 +1,89 @@
-"""``dataclass``: the standard library's decorator, built without compiling code at import.
+"""``dataclass``: the standard library's decorator, without its cost at start-up.
 
 On Python < 3.13 ``dataclasses.dataclass`` writes the source of ``__init__``, ``__repr__``,
-``__eq__``, ``__hash__``, ``__setattr__`` and ``__delattr__`` and compiles each: ~0.6 ms a frozen
-class, which made up half of the start-up of ``artiplan plan`` (about 100 classes on its path).
-This decorator gives the same classes: ``dataclasses`` itself collects the fields (so
-``dataclasses.fields``, ``replace``, ``asdict`` and ``is_dataclass`` work as ever) and adds
-``__match_args__`` and ``__slots__``; ``__init__`` is compiled as the standard library's (the one
-method whose speed counts), but only when first used, so a class a run never builds costs no
-compile; the other methods are closures that do what the generated ones do (same results,
-hashes, reprs and errors; tests/test_records.py compares the two). mypy sees
-``dataclasses.dataclass`` itself.
+``__eq__``, ``__hash__``, ``__setattr__`` and ``__delattr__`` and compiles each (~0.6 ms a frozen
+class), and importing ``dataclasses`` imports ``inspect`` (~8 ms). With the ~100 classes on the
+path of ``artiplan plan`` that was more than half of its start-up. This module makes the same
+classes without either:
 
-Supported: ``init``, ``repr``, ``eq``, ``frozen``, ``match_args``, ``slots``, fields with
-``default``, ``default_factory``, ``repr``, ``hash``, ``compare``, ``metadata``, and
-``__post_init__``. Anything else (``order``, ``unsafe_hash``, ``kw_only``, ``init=False`` fields,
-``ClassVar``/``InitVar`` pseudo-fields, a dataclass among the bases) is refused with a
-``TypeError``: use ``dataclasses.dataclass`` for such a class.
+* ``__init__`` is the standard library's text, compiled when first used (its speed counts; a
+  class a run never builds costs nothing); ``__repr__``, ``__eq__``, ``__hash__`` and the frozen
+  ``__setattr__``/``__delattr__`` are closures with the same results, hashes, reprs and errors;
+  ``__match_args__``, ``__slots__``, ``__doc__`` and the class attributes are the same;
+* ``__dataclass_fields__`` and ``__dataclass_params__`` appear when first read, made by
+  ``dataclasses`` itself, so ``dataclasses.fields``, ``replace``, ``asdict`` and ``is_dataclass``
+  work as ever; :func:`replace` and :func:`names` here do not need them.
+
+tests/test_records.py checks each class shape against the standard library's. What differs:
+``pprint`` prints these instances on one line (it recognises the standard library's generated
+``__repr__`` only). mypy sees ``dataclasses.dataclass``, ``field`` and ``replace`` themselves.
+
+Supported: ``init``, ``repr``, ``eq``, ``frozen``, ``match_args``, ``slots``; fields with
+``default``, ``default_factory``, ``repr``, ``hash``, ``compare``, ``metadata``; ``__post_init__``.
+Anything else (``order``, ``unsafe_hash``, ``kw_only``, ``init=False`` fields, ``ClassVar`` or
+``InitVar`` pseudo-fields, a dataclass among the bases) is refused with a ``TypeError``: use
+``dataclasses.dataclass`` for such a class.
 """
 
 from __future__ import annotations
 
 import _thread
 import abc
-import dataclasses
-import inspect
-from collections.abc import Callable
-from dataclasses import MISSING, Field, FrozenInstanceError, field
+import sys
 from operator import attrgetter
-from typing import TYPE_CHECKING, Any, TypeVar
 
-__all__ = ["dataclass", "field"]
+TYPE_CHECKING = False  # mypy reads any ``TYPE_CHECKING`` as true; no typing import at run time
+if TYPE_CHECKING:
+    from collections.abc import Callable
+    from typing import Any, TypeVar
 
-T = TypeVar("T")
+    T = TypeVar("T")
+
+__all__ = ["dataclass", "field", "names", "replace"]
+
+
+class _Missing:
+    """No default (``dataclasses.MISSING``, until ``dataclasses`` is imported)."""
+
+    def __repr__(self) -> str:
+        return "MISSING"
 
 
 class _Factory:
-    """The default of a parameter whose field has a ``default_factory`` (shown as the
-    standard library shows it)."""
+    """The default of a parameter whose field has a ``default_factory``."""
 
     def __repr__(self) -> str:
         return "<factory>"
 
 
+MISSING: Any = _Missing()
 _FACTORY = _Factory()
 _UNSUPPORTED = ("order", "unsafe_hash", "kw_only", "weakref_slot")
+
+
+class Field:
+    """What ``field()`` says about one field (``dataclasses.Field``'s attributes)."""
+
+    __slots__ = ("name", "type", "default", "default_factory", "init", "repr", "hash",
+                 "compare", "metadata", "kw_only")
+
+    def __init__(self, default: Any = MISSING, default_factory: Any = MISSING, init: bool = True,
+                 repr: bool = True, hash: bool | None = None, compare: bool = True,
+                 metadata: Any = None, kw_only: Any = MISSING) -> None:
+        if default is not MISSING and default_factory is not MISSING:
+            raise ValueError("cannot specify both default and default_factory")
+        self.name: str = ""
+        self.type: Any = None
+        self.default, self.default_factory, self.init, self.repr = (default, default_factory,
+                                                                     init, repr)
+        self.hash, self.compare, self.metadata, self.kw_only = hash, compare, metadata, kw_only
+
+
+def _field(*, default: Any = MISSING, default_factory: Any = MISSING, init: bool = True,
+           repr: bool = True, hash: bool | None = None, compare: bool = True,
+           metadata: Any = None, kw_only: Any = MISSING) -> Any:
+    """``dataclasses.field``."""
+    return Field(default, default_factory, init, repr, hash, compare, metadata, kw_only)
 
 
 def _dataclass(cls: type[T] | None = None, /, *, init: bool = True, repr: bool = True,
@@ -55,68 +95,151 @@ def _dataclass(cls: type[T] | None = None, /, *, init: bool = True, repr: bool =
                         "use dataclasses.dataclass")
 
     def wrap(c: type[T]) -> type[T]:
-        return _process(c, init, repr, eq, frozen, match_args, slots)
+        return _process(c, {"init": init, "repr": repr, "eq": eq, "frozen": frozen,
+                            "match_args": match_args}, slots)
 
     return wrap if cls is None else wrap(cls)
 
 
-def _process(cls: type[T], init: bool, repr_: bool, eq: bool, frozen: bool, match_args: bool,
-             slots: bool) -> type[T]:
-    if any(dataclasses.is_dataclass(b) for b in cls.__mro__[1:]):
+def _process(cls: type[T], params: dict[str, bool], slots: bool) -> type[T]:
+    if any("__dataclass_fields__" in vars(b) for b in cls.__mro__[1:]):
         raise TypeError(f"{cls.__name__}: a dataclass base is not supported here: use "
                         "dataclasses.dataclass")
+    fields = _collect(cls)
     own = dict(cls.__dict__)
     class_hash = own.get("__hash__", MISSING)
     explicit_hash = not (class_hash is MISSING or (class_hash is None and "__eq__" in own))
-    needs_doc = not cls.__doc__
-    if needs_doc:
-        cls.__doc__ = "?"  # keeps dataclasses from writing one before __init__ exists
-    # Fields, __dataclass_fields__, __match_args__, __slots__: the standard library's.
-    cls = dataclasses.dataclass(cls, init=False, repr=False, eq=False, match_args=match_args,
-                                slots=slots)
-    params = cls.__dataclass_params__  # type: ignore[attr-defined]
-    params.init, params.repr, params.eq, params.frozen = init, repr_, eq, frozen
-    fields = dataclasses.fields(cls)  # type: ignore[arg-type]
-    if len(fields) != len(cls.__dataclass_fields__):  # type: ignore[attr-defined]
-        raise TypeError(f"{cls.__name__}: ClassVar/InitVar pseudo-fields are not supported "
-                        "here: use dataclasses.dataclass")
-    if any(f.kw_only is True or not f.init for f in fields):
-        raise TypeError(f"{cls.__name__}: kw_only and init=False fields are not supported "
-                        "here: use dataclasses.dataclass")
-    if init:
+    if slots:
+        cls = _with_slots(cls, fields)
+    cls.__record_fields__ = fields  # type: ignore[attr-defined]
+    for attr in ("__dataclass_fields__", "__dataclass_params__"):
+        setattr(cls, attr, _Standard(cls, params, attr))
+    names = tuple(f.name for f in fields)
+    if params["init"]:
         _check_defaults(fields)
         if "__init__" not in own:
-            cls.__init__ = _LazyInit(cls, fields, frozen)  # type: ignore[method-assign,assignment]
-    if repr_ and "__repr__" not in own:
+            cls.__init__ = _LazyInit(cls, fields, params["frozen"])  # type: ignore[method-assign,assignment]
+    if params["repr"] and "__repr__" not in own:
         _attach(cls, _repr_fn(tuple(f.name for f in fields if f.repr)))
-    if eq and "__eq__" not in own:
+    if params["eq"] and "__eq__" not in own:
         _attach(cls, _eq_fn(_key(tuple(f.name for f in fields if f.compare))))
-    if frozen:
-        for fn in _frozen_fns(cls, tuple(f.name for f in fields)):
+    if params["frozen"]:
+        for fn in _frozen_fns(cls, names):
             if fn.__name__ in own:
                 raise TypeError(f"Cannot overwrite attribute {fn.__name__} in class "
                                 f"{cls.__name__}")
             _attach(cls, fn)
         if slots:
-            state: dict[str, Callable[..., Any]] = {"__getstate__": _getstate,
-                                                    "__setstate__": _setstate}
-            for name, method in state.items():
+            for name, method in (("__getstate__", _getstate), ("__setstate__", _setstate)):
                 if name not in own:
                     setattr(cls, name, method)
-    if eq and not explicit_hash:
-        if frozen:
+    if params["eq"] and not explicit_hash:
+        if params["frozen"]:
             hashed = tuple(f.name for f in fields if (f.compare if f.hash is None else f.hash))
             _attach(cls, _hash_fn(_key(hashed)))
         else:
             cls.__hash__ = None  # type: ignore[assignment]
-    if needs_doc:
-        try:
-            text_sig = str(inspect.signature(cls)).replace(" -> None", "")
-        except (TypeError, ValueError):
-            text_sig = ""
-        cls.__doc__ = cls.__name__ + text_sig
+    if not cls.__doc__:
+        cls.__doc__ = cls.__name__ + _signature_text(cls, fields, params["init"])
+    if params["match_args"] and "__match_args__" not in own:
+        setattr(cls, "__match_args__", names)  # noqa: B010 (mypy: a read-only name)
     abc.update_abstractmethods(cls)
     return cls
+
+
+def _collect(cls: type) -> tuple[Field, ...]:
+    """The fields of ``cls`` (its annotations), class attributes set as ``dataclasses`` does."""
+    annotations = cls.__dict__.get("__annotations__", {})
+    fields = []
+    for name, tp in annotations.items():
+        text = tp if isinstance(tp, str) else repr(tp)
+        if (text.lstrip().split("[", 1)[0].rsplit(".", 1)[-1].strip()
+                in ("ClassVar", "InitVar", "KW_ONLY") or "dataclasses.KW_ONLY" in text):
+            raise TypeError(f"{cls.__name__}.{name}: ClassVar/InitVar/KW_ONLY are not "
+                            "supported here: use dataclasses.dataclass")
+        default = getattr(cls, name, MISSING)
+        spec = _as_field(default)
+        f = Field(default) if spec is None else spec
+        if f.kw_only is True or not f.init:
+            raise TypeError(f"{cls.__name__}.{name}: kw_only and init=False fields are not "
+                            "supported here: use dataclasses.dataclass")
+        if f.default is not MISSING and f.default.__class__.__hash__ is None:
+            raise ValueError(f"mutable default {type(f.default)} for field {name} is not "
+                             "allowed: use default_factory")
+        f.name, f.type = name, tp
+        if spec is not None:
+            if f.default is MISSING:
+                delattr(cls, name)
+            else:
+                setattr(cls, name, f.default)
+        fields.append(f)
+    for name, value in cls.__dict__.items():
+        if _as_field(value) is not None and name not in annotations:
+            raise TypeError(f"{name!r} is a field but has no type annotation")
+    return tuple(fields)
+
+
+def _as_field(value: Any) -> Field | None:
+    """``value`` as a field's description if it is one (``field()`` of this module or of
+    ``dataclasses``), else None."""
+    if isinstance(value, Field):
+        return value
+    std = sys.modules.get("dataclasses")
+    if std is None or not isinstance(value, std.Field):
+        return None
+    return Field(*(MISSING if v is std.MISSING else v for v in (
+        value.default, value.default_factory, value.init, value.repr, value.hash, value.compare,
+        value.metadata, value.kw_only)))
+
+
+def _with_slots(cls: type, fields: tuple[Field, ...]) -> type:
+    """``cls`` made again with ``__slots__`` (as ``dataclasses`` does)."""
+    if "__slots__" in cls.__dict__:
+        raise TypeError(f"{cls.__name__} already specifies __slots__")
+    inherited: set[str] = set()
+    for base in cls.__mro__[1:-1]:
+        slots = base.__dict__.get("__slots__", ())
+        inherited.update((slots,) if isinstance(slots, str) else slots)
+    body = dict(cls.__dict__)
+    body["__slots__"] = tuple(f.name for f in fields if f.name not in inherited)
+    for f in fields:
+        body.pop(f.name, None)
+    body.pop("__dict__", None)
+    body.pop("__weakref__", None)
+    qualname = cls.__qualname__
+    new = type(cls)(cls.__name__, cls.__bases__, body)
+    new.__qualname__ = qualname
+    return new
+
+
+class _Standard:
+    """``__dataclass_fields__`` or ``__dataclass_params__`` until first read: then made by
+    ``dataclasses`` itself (on a twin class with the same fields and options) and put on the
+    class in place of both."""
+
+    __slots__ = ("cls", "params", "attr")
+
+    def __init__(self, cls: type, params: dict[str, bool], attr: str) -> None:
+        self.cls, self.params, self.attr = cls, params, attr
+
+    def __get__(self, obj: Any, owner: type | None = None) -> Any:
+        import dataclasses
+
+        cls: Any = self.cls
+        annotations: dict[str, Any] = {}
+        body: dict[str, Any] = {"__module__": cls.__module__, "__qualname__": cls.__qualname__,
+                                "__annotations__": annotations}
+        for f in cls.__record_fields__:
+            annotations[f.name] = f.type
+            body[f.name] = dataclasses.field(
+                default=dataclasses.MISSING if f.default is MISSING else f.default,
+                default_factory=(dataclasses.MISSING if f.default_factory is MISSING
+                                 else f.default_factory),
+                repr=f.repr, hash=f.hash, compare=f.compare, metadata=f.metadata)
+        twin: Any = dataclasses.dataclass(type(cls.__name__, (), body), **self.params)
+        type.__setattr__(cls, "__dataclass_fields__", twin.__dataclass_fields__)
+        type.__setattr__(cls, "__dataclass_params__", twin.__dataclass_params__)
+        return getattr(cls, self.attr)
 
 
 def _attach(cls: type, fn: Callable[..., Any]) -> None:
@@ -124,7 +247,7 @@ def _attach(cls: type, fn: Callable[..., Any]) -> None:
     setattr(cls, fn.__name__, fn)
 
 
-def _check_defaults(fields: tuple[Field[Any], ...]) -> None:
+def _check_defaults(fields: tuple[Field, ...]) -> None:
     seen_default = False
     for f in fields:
         if f.default is not MISSING or f.default_factory is not MISSING:
@@ -135,12 +258,12 @@ def _check_defaults(fields: tuple[Field[Any], ...]) -> None:
 
 class _LazyInit:
     """A class's ``__init__`` until it is first used (its first instance, or a read such as
-    ``inspect.signature``): compiled then, as the standard library writes it (its speed
-    counts), and put in its place. Classes a run never builds cost no compile."""
+    ``inspect.signature``): compiled then, as the standard library writes it, and put in its
+    place."""
 
     __slots__ = ("cls", "fields", "frozen")
 
-    def __init__(self, cls: type, fields: tuple[Field[Any], ...], frozen: bool) -> None:
+    def __init__(self, cls: type, fields: tuple[Field, ...], frozen: bool) -> None:
         self.cls, self.fields, self.frozen = cls, fields, frozen
 
     def __get__(self, obj: Any, owner: type | None = None) -> Any:
@@ -149,7 +272,7 @@ class _LazyInit:
         return fn if obj is None else fn.__get__(obj, owner)
 
 
-def _init_fn(cls: type, fields: tuple[Field[Any], ...], frozen: bool) -> Callable[..., None]:
+def _init_fn(cls: type, fields: tuple[Field, ...], frozen: bool) -> Callable[..., None]:
     self_name = "__dataclass_self__" if any(f.name == "self" for f in fields) else "self"
     ns: dict[str, Any] = {"__name__": cls.__module__, "_FACTORY": _FACTORY,
                           "__dataclass_builtins_object__": object}
@@ -174,6 +297,25 @@ def _init_fn(cls: type, fields: tuple[Field[Any], ...], frozen: bool) -> Callabl
     fn: Callable[..., None] = ns["__init__"]
     fn.__annotations__ = {**{f.name: f.type for f in fields}, "return": None}
     return fn
+
+
+def _signature_text(cls: type, fields: tuple[Field, ...], init: bool) -> str:
+    """``str(inspect.signature(cls))`` without ``-> None``, as ``dataclasses`` puts in the
+    ``__doc__`` of a class without one (written here when every annotation is a string)."""
+    if init and isinstance(cls.__dict__.get("__init__"), _LazyInit) \
+            and all(isinstance(f.type, str) for f in fields):
+        parts = []
+        for f in fields:
+            default = ("<factory>" if f.default_factory is not MISSING
+                       else "" if f.default is MISSING else repr(f.default))
+            parts.append(f"{f.name}: {f.type!r}" + (f" = {default}" if default else ""))
+        return "(" + ", ".join(parts) + ")"
+    import inspect
+
+    try:
+        return str(inspect.signature(cls)).replace(" -> None", "")
+    except (TypeError, ValueError):
+        return ""
 
 
 def _key(names: tuple[str, ...]) -> Callable[[Any], tuple[Any, ...]]:
@@ -222,11 +364,15 @@ def _repr_fn(names: tuple[str, ...]) -> Callable[[Any], str]:
 def _frozen_fns(cls: type, names: tuple[str, ...]) -> tuple[Callable[..., None], ...]:
     def __setattr__(self: Any, name: str, value: Any) -> None:
         if type(self) is cls or name in names:
+            from dataclasses import FrozenInstanceError
+
             raise FrozenInstanceError(f"cannot assign to field {name!r}")
         super(cls, self).__setattr__(name, value)  # type: ignore[arg-type]
 
     def __delattr__(self: Any, name: str) -> None:
         if type(self) is cls or name in names:
+            from dataclasses import FrozenInstanceError
+
             raise FrozenInstanceError(f"cannot delete field {name!r}")
         super(cls, self).__delattr__(name)  # type: ignore[arg-type]
 
@@ -234,15 +380,40 @@ def _frozen_fns(cls: type, names: tuple[str, ...]) -> tuple[Callable[..., None],
 
 
 def _getstate(self: Any) -> list[Any]:
-    return [getattr(self, f.name) for f in dataclasses.fields(self)]
+    return [getattr(self, f.name) for f in type(self).__record_fields__]
 
 
 def _setstate(self: Any, state: list[Any]) -> None:
-    for f, value in zip(dataclasses.fields(self), state, strict=False):
+    for f, value in zip(type(self).__record_fields__, state, strict=False):
         object.__setattr__(self, f.name, value)
+
+
+def names(cls_or_obj: Any) -> tuple[str, ...]:
+    """The field names of a dataclass (made here or by ``dataclasses``) or of an instance."""
+    found = getattr(cls_or_obj, "__record_fields__", None)
+    if found is None:
+        import dataclasses
+
+        return tuple(f.name for f in dataclasses.fields(cls_or_obj))
+    return tuple(f.name for f in found)
+
+
+def _replace(obj: T, /, **changes: Any) -> T:
+    """``dataclasses.replace``."""
+    found = getattr(type(obj), "__record_fields__", None)
+    if found is None:
+        import dataclasses
+
+        return dataclasses.replace(obj, **changes)  # type: ignore[type-var]
+    for f in found:
+        if f.name not in changes:
+            changes[f.name] = getattr(obj, f.name)
+    return obj.__class__(**changes)
 
 
 if TYPE_CHECKING:
     from dataclasses import dataclass as dataclass
+    from dataclasses import field as field
+    from dataclasses import replace as replace
 else:
-    dataclass = _dataclass
+    dataclass, field, replace = _dataclass, _field, _replace

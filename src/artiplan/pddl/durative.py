@@ -24,12 +24,12 @@ says the duration it ran. Plans name the durative action: ``t: (N args) [d]``
 
 from __future__ import annotations
 
-from dataclasses import replace
 from typing import cast
 
 from artiplan.errors import InputError
 from artiplan.pddl import grammar as g
 from artiplan.pddl import syntax as s
+from artiplan.records import replace
 
 #: Half-width [s] of a fixed duration's window for the end (1.5 grid steps of 1e-6 s).
 END_SLACK = 1.5e-6

@@ -7,7 +7,6 @@ constants, variables; arities); ``parse_problem`` checks syntax only, and
 
 from __future__ import annotations
 
-from dataclasses import replace
 from typing import cast
 
 from artiplan.errors import InputError
@@ -27,6 +26,7 @@ from artiplan.pddl.formulas import (
     read_typed_list,
 )
 from artiplan.pddl.lexer import SExpr, SList, Token, is_number, read_sexpr
+from artiplan.records import replace
 
 
 def parse_domain(text: str, filename: str = "<domain>") -> s.Domain:

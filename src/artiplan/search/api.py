@@ -12,7 +12,6 @@ A plan the validator rejects is never returned as solved: the search goes on (co
 
 from __future__ import annotations
 
-import dataclasses
 import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
@@ -20,7 +19,7 @@ from typing import Any
 
 from artiplan.errors import InvalidPlanError, UsageError
 from artiplan.pddl.task import Task
-from artiplan.records import dataclass
+from artiplan.records import dataclass, names, replace
 from artiplan.search.engine import Apply, Search, SearchConfig, SearchOutcome, initial_node
 from artiplan.search.heuristic import Heuristic, HeuristicConfig, RateHeuristic
 from artiplan.search.improve import improve
@@ -88,8 +87,8 @@ class PlannerConfig:
 
 
 #: The planner's keyword options (name -> the field's type), for scripts and front ends.
-OPTIONS: dict[str, type] = {f.name: type(f.default) for f in dataclasses.fields(PlannerConfig)
-                            if f.name != "heuristic"}
+OPTIONS: dict[str, type] = {name: type(getattr(PlannerConfig, name))
+                            for name in names(PlannerConfig) if name != "heuristic"}
 
 #: ``on_progress(elapsed [s], statistics so far)``: called every 2 s of a long planning call.
 Progress = Callable[[float, PlanStats], None]
@@ -174,7 +173,7 @@ def plan_task(
     chains); ``on_progress`` is called about every 2 s with the counters so far.
     """
     if config is None or options:
-        config = dataclasses.replace(config, **options) if config else PlannerConfig.of(**options)
+        config = replace(config, **options) if config else PlannerConfig.of(**options)
     run = _Planning(task, config, time_limit, memory_limit, on_progress)
     t0 = time.perf_counter()
     try:
@@ -207,7 +206,7 @@ class _Planning:
 
     def _report(self, elapsed: float) -> None:
         assert self.on_progress is not None
-        now = dataclasses.replace(self.stats)
+        now = replace(self.stats)
         if self.running is not None:
             now.add(self.running.stats)
         self.on_progress(elapsed, now)
@@ -284,7 +283,7 @@ class _Planning:
         if not attempt.numeric:
             return config.heuristic(self.ct, hc, self.kernel.active), config.search()
         heur = NumericHeuristic(self.ct, hc, self.kernel.active)
-        return heur, dataclasses.replace(config.search(), delta=attempt.delta,
+        return heur, replace(config.search(), delta=attempt.delta,
                                          before_events=True, g_weight=1.0)
 
     def _repair(self, actions: list[int], times: list[float]) -> bool:
@@ -310,7 +309,7 @@ class _Planning:
             return True
         report = self._validate(found)
         if report.valid:
-            found = dataclasses.replace(found, events=tuple(report.events))
+            found = replace(found, events=tuple(report.events))
             self.best = (found, report)
             return True
         self.stats.rejected_reasons.append(report.reason)
@@ -358,7 +357,7 @@ class _Planning:
         winner = self.winner
 
         def heuristic(ct: CompiledTask, hc: HeuristicConfig, active: Any) -> Heuristic:
-            return self._attempt(dataclasses.replace(winner, damage=hc.damage_cost),
+            return self._attempt(replace(winner, damage=hc.damage_cost),
                                  hc.time_weight)[0]
 
         best, report = improve(self.ct, self.kernel, self._attempt(winner)[1], self.limits,

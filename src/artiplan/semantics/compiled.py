@@ -13,7 +13,9 @@ Compiling costs a few milliseconds per hundred operators and happens once per ta
 
 from __future__ import annotations
 
+import functools
 from collections.abc import Callable
+from types import CodeType
 
 from artiplan.pddl.task import (
     And,
@@ -107,8 +109,15 @@ def compile_condition(
         return comparison_source(c, tol)
 
     src = condition_source(cond, comparison)
-    fn: CondFn = eval(f"lambda F, V: {src}", dict(SOURCE_GLOBALS))  # noqa: S307 - source generated from the task
+    fn: CondFn = eval(_code(f"lambda F, V: {src}", "eval"), dict(SOURCE_GLOBALS))  # noqa: S307 - source generated from the task
     return fn, frozenset(used)
+
+
+@functools.lru_cache(maxsize=4096)
+def _code(source: str, mode: str) -> CodeType:
+    """Generated source, compiled once: the planner's and the validator's views of a task
+    share most of theirs (each function still gets its own globals)."""
+    return compile(source, "<string>", mode)
 
 
 def fact_literals(cond: Condition) -> tuple[int, int] | None:
@@ -162,7 +171,7 @@ def compile_effect(eff: Effect, comps: ComparisonTable, tol: Tolerances) -> tupl
     _effect_lines(eff, "    ", cond_src, split, parts=True)
     split.append("    return add, dele, U")
     namespace: dict[str, object] = dict(SOURCE_GLOBALS)
-    exec("\n".join(apply + split), namespace)  # noqa: S102 - source generated from the task
+    exec(_code("\n".join(apply + split), "exec"), namespace)  # noqa: S102 - source generated from the task
     return namespace["_eff"], namespace["_parts"]  # type: ignore[return-value]
 
 

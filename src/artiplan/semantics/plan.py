@@ -6,9 +6,7 @@ A contract shared by ``semantics`` (reading, writing, validating), ``search`` an
 
 from __future__ import annotations
 
-from dataclasses import replace
-
-from artiplan.records import dataclass, field
+from artiplan.records import dataclass, field, replace
 
 
 @dataclass(frozen=True)
