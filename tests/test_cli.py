@@ -51,9 +51,29 @@ def test_plan_imports_only_what_planning_needs(tmp_path) -> None:  # type: ignor
     assert out[-2] == "0" and (tmp_path / "plan.txt").read_text().strip()
     loaded = set(out[-1].split())
     heavy = {"numpy", "scipy", "unified_planning", "mujoco", "owlready2", "matplotlib",
-             "dataclasses", "inspect", "artiplan.backends", "artiplan.world",
+             "dataclasses", "inspect", "shutil", "typing", "artiplan.backends", "artiplan.world",
              "artiplan.execution", "artiplan.bench", "artiplan.viz", "artiplan.up"}
     assert not loaded & heavy, sorted(loaded & heavy)
+
+
+@pytest.mark.parametrize("columns", [None, "50", "0", "wide"])
+def test_help_is_as_wide_as_argparse_makes_it(columns: str | None, monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    import argparse
+    import shutil
+
+    from artiplan import cli
+
+    if columns is None:
+        monkeypatch.delenv("COLUMNS", raising=False)
+    else:
+        monkeypatch.setenv("COLUMNS", columns)
+    assert cli.terminal_columns() == shutil.get_terminal_size().columns
+    texts = []
+    for formatter in (argparse.HelpFormatter, cli.HelpFormatter):
+        p = argparse.ArgumentParser(prog="x", description="word " * 40, formatter_class=formatter)
+        p.add_argument("--flag", help="a long help text " * 8)
+        texts.append(p.format_help())
+    assert texts[0] == texts[1]
 
 
 def test_no_command_is_a_usage_error(capsys) -> None:  # type: ignore[no-untyped-def]

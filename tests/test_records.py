@@ -78,28 +78,26 @@ def _outcome(fn: Callable[[], Any]) -> tuple[str, Any]:
         return type(exc).__name__, str(exc)
 
 
+@pytest.fixture(params=[100, 0], ids=["generic-init", "compiled-init"])
+def compile_after(request, monkeypatch) -> int:  # type: ignore[no-untyped-def]
+    """Instances made by the generic __init__ first, or by the compiled one at once."""
+    monkeypatch.setattr(records._LazyInit, "COMPILE_AFTER", request.param)
+    return int(request.param)
+
+
 @pytest.mark.parametrize("opts", OPTIONS, ids=lambda o: ",".join(o) or "default")
-def test_same_classes(opts: dict[str, Any]) -> None:
+def test_same_instances(opts: dict[str, Any], compile_after: int) -> None:
+    seen: set[type] = set()
     for std, own, args in _both(opts):
-        assert own.__doc__ == std.__doc__
-        assert str(inspect.signature(own)) == str(inspect.signature(std))
-        assert own.__init__.__qualname__.split(".")[-1] == std.__init__.__qualname__.split(".")[-1]
-        assert own.__match_args__ == std.__match_args__  # type: ignore[attr-defined]
-        assert getattr(own, "__slots__", None) == getattr(std, "__slots__", None)
-        assert [(f.name, f.default, f.repr, f.compare, f.hash) for f in dataclasses.fields(own)] \
-            == [(f.name, f.default, f.repr, f.compare, f.hash) for f in dataclasses.fields(std)]
-        assert (own.__hash__ is None) == (std.__hash__ is None)
-        assert repr(own.__dataclass_params__) == repr(std.__dataclass_params__)  # type: ignore[attr-defined]
-        assert [(f.name, f.type, f.default_factory, f.metadata, f.kw_only, f.init)
-                for f in dataclasses.fields(own)] \
-            == [(f.name, f.type, f.default_factory, f.metadata, f.kw_only, f.init)
-                for f in dataclasses.fields(std)]
-        assert dataclasses.is_dataclass(own) and records.names(own) == records.names(std)
-        assert {k: repr(v) for k, v in vars(own).items() if not k.startswith("__")} \
-            == {k: repr(v) for k, v in vars(std).items() if not k.startswith("__")}  # defaults
         if opts.get("init") is False:
             continue
+        if own not in seen:
+            seen.add(own)
+            assert isinstance(vars(own)["__init__"], records._LazyInit)  # no compile yet
         s1, s2, o1, o2 = std(*args), std(*args), own(*args), own(*args)
+        names = records.names(std)
+        kw = dict(zip(names, args, strict=False))
+        assert dataclasses.astuple(own(**kw)) == dataclasses.astuple(std(**kw))
         assert (o1 == o2) == (s1 == s2)
         assert (o1 != o2) == (s1 != s2)
         assert (o1 == s1) is False  # other classes never compare equal
@@ -115,7 +113,7 @@ def test_same_classes(opts: dict[str, Any]) -> None:
             assert hashes[0][0] == hashes[1][0] == "ok"  # identity hashes
         assert dataclasses.asdict(o1) == dataclasses.asdict(s1)
         assert dataclasses.astuple(o1) == dataclasses.astuple(s1)
-        for name in [f.name for f in dataclasses.fields(std)] + ["extra"]:
+        for name in [*names, "extra"]:
             writes = (_outcome(lambda o1=o1, n=name: setattr(o1, n, 9)),
                       _outcome(lambda s1=s1, n=name: setattr(s1, n, 9)))
             deletes = (_outcome(lambda o1=o1, n=name: delattr(o1, n)),
@@ -130,17 +128,59 @@ def test_same_classes(opts: dict[str, Any]) -> None:
             r1, r2 = replace(own(*args)), replace(std(*args))
             assert type(r1) is own and type(r2) is std
             assert dataclasses.astuple(r1) == dataclasses.astuple(r2)
-            if dataclasses.fields(std):
-                name = dataclasses.fields(std)[0].name
-                assert getattr(replace(own(*args), **{name: 5}), name) == 5
+            if names:
+                assert getattr(replace(own(*args), **{names[0]: 5}), names[0]) == 5
                 assert _outcome(functools.partial(replace, own(*args), nope=1))[0] \
                     == _outcome(functools.partial(replace, std(*args), nope=1))[0] == "TypeError"
         c1, c2 = copy.deepcopy(own(*args)), copy.deepcopy(std(*args))
         assert (c1 == own(*args)) == (c2 == std(*args))
 
 
+def test_init_compiled_when_it_pays_off() -> None:
+    @records.dataclass(frozen=True)
+    class Pair:
+        a: int
+        b: list[int] = records.field(default_factory=list)
+
+    limit = records._LazyInit.COMPILE_AFTER
+    made = [Pair(k) for k in range(limit - 1)] + [Pair(a=1, b=[2])]
+    assert isinstance(vars(Pair)["__init__"], records._LazyInit)  # generic so far
+    assert made[3] == Pair(3) and made[-1].b == [2] and made[0].b is not made[1].b
+    Pair(5)
+    assert not isinstance(vars(Pair)["__init__"], records._LazyInit)  # compiled now
+    assert Pair(5) == made[5]
+
+    @records.dataclass
+    class Single:
+        a: int
+
+    with pytest.raises(TypeError, match="unexpected keyword argument 'c'"):
+        Single(1, c=2)  # a call that does not bind: the compiled __init__'s own error
+    assert not isinstance(vars(Single)["__init__"], records._LazyInit)
+
+
+@pytest.mark.parametrize("opts", OPTIONS, ids=lambda o: ",".join(o) or "default")
+def test_same_classes(opts: dict[str, Any]) -> None:
+    for std, own, _ in _both(opts):
+        assert own.__doc__ == std.__doc__
+        assert str(inspect.signature(own)) == str(inspect.signature(std))
+        assert not isinstance(vars(own).get("__init__"), records._LazyInit)  # read: compiled
+        assert own.__init__.__qualname__.split(".")[-1] == std.__init__.__qualname__.split(".")[-1]
+        assert own.__match_args__ == std.__match_args__  # type: ignore[attr-defined]
+        assert getattr(own, "__slots__", None) == getattr(std, "__slots__", None)
+        assert (own.__hash__ is None) == (std.__hash__ is None)
+        assert repr(own.__dataclass_params__) == repr(std.__dataclass_params__)  # type: ignore[attr-defined]
+        assert [(f.name, f.type, f.default, f.default_factory, f.repr, f.compare, f.hash,
+                 f.metadata, f.kw_only, f.init) for f in dataclasses.fields(own)] \
+            == [(f.name, f.type, f.default, f.default_factory, f.repr, f.compare, f.hash,
+                 f.metadata, f.kw_only, f.init) for f in dataclasses.fields(std)]
+        assert dataclasses.is_dataclass(own) and records.names(own) == records.names(std)
+        assert {k: repr(v) for k, v in vars(own).items() if not k.startswith("__")} \
+            == {k: repr(v) for k, v in vars(std).items() if not k.startswith("__")}  # defaults
+
+
 @pytest.mark.parametrize("opts", OPTIONS[:4], ids=lambda o: ",".join(o) or "default")
-def test_same_errors(opts: dict[str, Any]) -> None:
+def test_same_errors(opts: dict[str, Any], compile_after: int) -> None:
     std, own = shapes(DECORATORS["stdlib"], opts), shapes(DECORATORS["records"], opts)
     for bad_args, bad_kw in (((), {}), (("a", (), None, [], 1.0, "extra"), {}),
                              (("a",), {"name": "b"}), (("a",), {"nope": 1})):
@@ -151,7 +191,7 @@ def test_same_errors(opts: dict[str, Any]) -> None:
             == s[1].replace(std["Node"].__qualname__, "C")
 
 
-def test_factories_nan_post_init_and_recursion() -> None:
+def test_factories_nan_post_init_and_recursion(compile_after: int) -> None:
     for dc in DECORATORS.values():
 
         @dc

@@ -50,6 +50,30 @@ def process_start() -> float:
         return time.time()
 
 
+class HelpFormatter(argparse.HelpFormatter):
+    """argparse's formatter, as wide as argparse makes it, without importing ``shutil`` (and
+    its compression modules: a noticeable share of a short command's start) to find out."""
+
+    def __init__(self, prog: str, indent_increment: int = 2, max_help_position: int = 24,
+                 width: int | None = None) -> None:
+        super().__init__(prog, indent_increment, max_help_position,
+                         terminal_columns() - 2 if width is None else width)
+
+
+def terminal_columns() -> int:
+    """``shutil.get_terminal_size().columns``: COLUMNS, else stdout's terminal, else 80."""
+    try:
+        columns = int(os.environ["COLUMNS"])
+    except (KeyError, ValueError):
+        columns = 0
+    if columns > 0:
+        return columns
+    try:
+        return os.get_terminal_size(sys.__stdout__.fileno()).columns or 80  # type: ignore[union-attr]
+    except (AttributeError, ValueError, OSError):
+        return 80
+
+
 REPORT_URL = "the project's issue tracker (include the command line and the traceback above)"
 
 
@@ -62,13 +86,15 @@ def build_parser(
     parser = argparse.ArgumentParser(
         prog="artiplan",
         description="Plan and execute the reshaping of articulated objects with PDDL+ and gravity.",
+        formatter_class=HelpFormatter,
     )
     parser.add_argument("--version", action="version", version=f"artiplan {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     subparsers = {}
     for name, (_module, help_text) in COMMANDS.items():
         if only is None or name == only:
-            subparsers[name] = sub.add_parser(name, help=help_text, description=help_text)
+            subparsers[name] = sub.add_parser(name, help=help_text, description=help_text,
+                                              formatter_class=HelpFormatter)
     return parser, subparsers
 
 

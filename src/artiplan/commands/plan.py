@@ -16,9 +16,12 @@ import resource
 import sys
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
 
 from artiplan.errors import ExitCode, UsageError
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 PLANNERS = ("artiplan", "enhsp", "kairos")
 

@@ -15,7 +15,6 @@ from __future__ import annotations
 import time
 from collections.abc import Callable, Iterator
 from pathlib import Path
-from typing import Any
 
 from artiplan.errors import InvalidPlanError, UsageError
 from artiplan.pddl.task import Task
@@ -24,15 +23,17 @@ from artiplan.search.engine import Apply, Search, SearchConfig, SearchOutcome, i
 from artiplan.search.heuristic import Heuristic, HeuristicConfig, RateHeuristic
 from artiplan.search.improve import improve
 from artiplan.search.limits import LimitReached, Limits
-from artiplan.search.numeric import NumericHeuristic
 from artiplan.search.proofs import prove_unsolvable
-from artiplan.search.timing import Repair, repair_times
 from artiplan.semantics.compiled import CompiledTask, compile_task
 from artiplan.semantics.kernel import Kernel
 from artiplan.semantics.plan import Plan, TimedAction, TimedEvent, fold_durative
 from artiplan.semantics.results import PlanResult, PlanStats, PlanStatus, margins_of
 from artiplan.semantics.validator import ValidationReport, enabled_initial_events, validate
 from artiplan.tolerances import VAL_EVENT_WINDOW, VAL_TIME_TOLERANCE
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 __all__ = ["OPTIONS", "PlanResult", "PlanStats", "PlanStatus", "PlannerConfig", "plan",
            "plan_task"]
@@ -282,6 +283,8 @@ class _Planning:
         hc = HeuristicConfig(time_weight=weight, damage_cost=attempt.damage)
         if not attempt.numeric:
             return config.heuristic(self.ct, hc, self.kernel.active), config.search()
+        from artiplan.search.numeric import NumericHeuristic  # here: general domains only
+
         heur = NumericHeuristic(self.ct, hc, self.kernel.active)
         return heur, replace(config.search(), delta=attempt.delta,
                                          before_events=True, g_weight=1.0)
@@ -289,6 +292,8 @@ class _Planning:
     def _repair(self, actions: list[int], times: list[float]) -> bool:
         """A timing repair of a skeleton (:mod:`artiplan.search.timing`); True when the
         repaired plan is valid (it becomes the best plan)."""
+        from artiplan.search.timing import Repair, repair_times  # here: general domains only
+
         t = time.perf_counter()
         settings = Repair(epsilon=self.config.epsilon, event_gap=self.config.event_gap)
         evals: list[int] = []

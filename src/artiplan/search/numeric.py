@@ -26,7 +26,6 @@ import heapq
 import math
 import time
 from collections.abc import Callable
-from typing import Literal
 
 from artiplan.pddl.task import (
     Atom,
@@ -43,6 +42,10 @@ from artiplan.records import dataclass
 from artiplan.search.heuristic import Evaluation, GoalGroup, HeuristicConfig, propagate
 from artiplan.semantics.compiled import CompiledTask, compile_condition
 from artiplan.semantics.walks import SOURCE_GLOBALS, conjuncts, expr_source, fluents_of, linear
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Literal
 
 Values = tuple[float, ...]
 PFn = Callable[[Values], float]

@@ -9,7 +9,6 @@ from __future__ import annotations
 import math
 from collections.abc import Iterator, Mapping
 from enum import Enum
-from typing import Any
 
 from artiplan.errors import ExitCode
 from artiplan.pddl.task import Task
@@ -17,6 +16,10 @@ from artiplan.records import dataclass, field, names
 from artiplan.semantics.plan import Plan
 from artiplan.semantics.trajectory import Trajectory
 from artiplan.semantics.walks import robustness
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 
 class PlanStatus(Enum):
@@ -82,7 +85,7 @@ def margins_of(task: Task, plan: Plan, trajectory: Trajectory, event_gap: float)
 
 
 @dataclass
-class PlanStats(Mapping[str, Any]):
+class PlanStats(Mapping[str, "Any"]):
     """Counters and timings of a planning call (typed; also readable as a mapping, e.g.
     ``stats["expanded"]``, for scripts and JSON).
 

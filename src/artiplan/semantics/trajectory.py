@@ -6,7 +6,6 @@ from __future__ import annotations
 import bisect
 import math
 from pathlib import Path
-from typing import Literal
 
 from artiplan.pddl.task import fluent_column
 from artiplan.records import dataclass, field
@@ -14,7 +13,12 @@ from artiplan.semantics.kernel import Segment
 from artiplan.semantics.plan import TimedEvent
 from artiplan.semantics.state import State
 
-RowKind = Literal["init", "action", "event", "sample"]
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Literal
+
+if TYPE_CHECKING:
+    RowKind = Literal["init", "action", "event", "sample"]
 
 
 @dataclass(frozen=True)
