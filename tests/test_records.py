@@ -296,6 +296,9 @@ def test_subclasses() -> None:
         y: int = 0
 
     assert Child(1, 2) == Child(1, 2) and Child(1).x == 1
+    assert records.names(Child) == ("x", "y") and records.names(Plain) == ("x",)
+    assert records.replace(Child(1, 2), y=3) == Child(1, 3)
+    assert records.replace(p, x=5).x == 5 and type(records.replace(p)) is Plain
     with pytest.raises(TypeError, match="dataclass base"):
         records.dataclass(frozen=True)(type("Sub", (Base,), {"__annotations__": {"z": "int"}}))
 

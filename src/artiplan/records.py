@@ -6,10 +6,10 @@ class), and importing ``dataclasses`` imports ``inspect`` (~8 ms). With the ~100
 path of ``artiplan plan`` that was more than half of its start-up. This module makes the same
 classes without either:
 
-* ``__init__`` is the standard library's text, compiled when first used (its speed counts; a
-  class a run never builds costs nothing); ``__repr__``, ``__eq__``, ``__hash__`` and the frozen
-  ``__setattr__``/``__delattr__`` are closures with the same results, hashes, reprs and errors;
-  ``__match_args__``, ``__slots__``, ``__doc__`` and the class attributes are the same;
+* ``__init__`` is a closure for a class's first instances and the standard library's text,
+  compiled, once that pays off (:class:`_LazyInit`); ``__repr__``, ``__eq__``, ``__hash__`` and
+  the frozen ``__setattr__``/``__delattr__`` are closures with the same results, hashes, reprs
+  and errors; ``__match_args__``, ``__slots__``, ``__doc__`` and class attributes are the same;
 * ``__dataclass_fields__`` and ``__dataclass_params__`` appear when first read, made by
   ``dataclasses`` itself, so ``dataclasses.fields``, ``replace``, ``asdict`` and ``is_dataclass``
   work as ever; :func:`replace` and :func:`names` here do not need them.
@@ -42,22 +42,19 @@ if TYPE_CHECKING:
 __all__ = ["dataclass", "field", "names", "replace"]
 
 
-class _Missing:
-    """No default (``dataclasses.MISSING``, until ``dataclasses`` is imported)."""
+class _Sentinel:
+    """A marker: no default (``MISSING``), or a parameter's default that calls the field's
+    ``default_factory`` (``<factory>``, as the standard library shows it)."""
+
+    def __init__(self, text: str) -> None:
+        self.text = text
 
     def __repr__(self) -> str:
-        return "MISSING"
+        return self.text
 
 
-class _Factory:
-    """The default of a parameter whose field has a ``default_factory``."""
-
-    def __repr__(self) -> str:
-        return "<factory>"
-
-
-MISSING: Any = _Missing()
-_FACTORY = _Factory()
+MISSING: Any = _Sentinel("MISSING")
+_FACTORY = _Sentinel("<factory>")
 _UNSUPPORTED = ("order", "unsafe_hash", "kw_only", "weakref_slot")
 
 
@@ -67,9 +64,9 @@ class Field:
     __slots__ = ("name", "type", "default", "default_factory", "init", "repr", "hash",
                  "compare", "metadata", "kw_only")
 
-    def __init__(self, default: Any = MISSING, default_factory: Any = MISSING, init: bool = True,
-                 repr: bool = True, hash: bool | None = None, compare: bool = True,
-                 metadata: Any = None, kw_only: Any = MISSING) -> None:
+    def __init__(self, *, default: Any = MISSING, default_factory: Any = MISSING,
+                 init: bool = True, repr: bool = True, hash: bool | None = None,
+                 compare: bool = True, metadata: Any = None, kw_only: Any = MISSING) -> None:
         if default is not MISSING and default_factory is not MISSING:
             raise ValueError("cannot specify both default and default_factory")
         self.name: str = ""
@@ -77,13 +74,6 @@ class Field:
         self.default, self.default_factory, self.init, self.repr = (default, default_factory,
                                                                      init, repr)
         self.hash, self.compare, self.metadata, self.kw_only = hash, compare, metadata, kw_only
-
-
-def _field(*, default: Any = MISSING, default_factory: Any = MISSING, init: bool = True,
-           repr: bool = True, hash: bool | None = None, compare: bool = True,
-           metadata: Any = None, kw_only: Any = MISSING) -> Any:
-    """``dataclasses.field``."""
-    return Field(default, default_factory, init, repr, hash, compare, metadata, kw_only)
 
 
 def _dataclass(cls: type[T] | None = None, /, *, init: bool = True, repr: bool = True,
@@ -159,7 +149,7 @@ def _collect(cls: type) -> tuple[Field, ...]:
                             "supported here: use dataclasses.dataclass")
         default = getattr(cls, name, MISSING)
         spec = _as_field(default)
-        f = Field(default) if spec is None else spec
+        f = Field(default=default) if spec is None else spec
         if f.kw_only is True or not f.init:
             raise TypeError(f"{cls.__name__}.{name}: kw_only and init=False fields are not "
                             "supported here: use dataclasses.dataclass")
@@ -187,9 +177,8 @@ def _as_field(value: Any) -> Field | None:
     std = sys.modules.get("dataclasses")
     if std is None or not isinstance(value, std.Field):
         return None
-    return Field(*(MISSING if v is std.MISSING else v for v in (
-        value.default, value.default_factory, value.init, value.repr, value.hash, value.compare,
-        value.metadata, value.kw_only)))
+    return Field(**{k: MISSING if v is std.MISSING else v for k, v in (
+        (k, getattr(value, k)) for k in Field.__slots__[2:])})
 
 
 def _with_slots(cls: type, fields: tuple[Field, ...]) -> type:
@@ -432,17 +421,27 @@ def _frozen_fns(cls: type, names: tuple[str, ...]) -> tuple[Callable[..., None],
 
 
 def _getstate(self: Any) -> list[Any]:
-    return [getattr(self, f.name) for f in type(self).__record_fields__]
+    return [getattr(self, f.name) for f in _own_fields(type(self)) or ()]
 
 
 def _setstate(self: Any, state: list[Any]) -> None:
-    for f, value in zip(type(self).__record_fields__, state, strict=False):
+    for f, value in zip(_own_fields(type(self)) or (), state, strict=False):
         object.__setattr__(self, f.name, value)
+
+
+def _own_fields(cls: type) -> tuple[Field, ...] | None:
+    """The fields of the nearest dataclass among ``cls`` and its bases if this module made
+    it, else None (a class of ``dataclasses``, or none)."""
+    for k in cls.__mro__:
+        found = vars(k).get("__record_fields__")
+        if found is not None or "__dataclass_fields__" in vars(k):
+            return found
+    return None
 
 
 def names(cls_or_obj: Any) -> tuple[str, ...]:
     """The field names of a dataclass (made here or by ``dataclasses``) or of an instance."""
-    found = getattr(cls_or_obj, "__record_fields__", None)
+    found = _own_fields(cls_or_obj if isinstance(cls_or_obj, type) else type(cls_or_obj))
     if found is None:
         import dataclasses
 
@@ -452,7 +451,7 @@ def names(cls_or_obj: Any) -> tuple[str, ...]:
 
 def _replace(obj: T, /, **changes: Any) -> T:
     """``dataclasses.replace``."""
-    found = getattr(type(obj), "__record_fields__", None)
+    found = None if isinstance(obj, type) else _own_fields(type(obj))
     if found is None:
         import dataclasses
 
@@ -468,4 +467,4 @@ if TYPE_CHECKING:
     from dataclasses import field as field
     from dataclasses import replace as replace
 else:
-    dataclass, field, replace = _dataclass, _field, _replace
+    dataclass, field, replace = _dataclass, Field, _replace
