@@ -80,7 +80,8 @@ def _dataclass(cls: type[T] | None = None, /, *, init: bool = True, repr: bool =
                eq: bool = True, frozen: bool = False, match_args: bool = True,
                slots: bool = False, **unsupported: Any) -> Any:
     """``dataclasses.dataclass`` for the options in the module docstring."""
-    if any(unsupported.get(k) for k in _UNSUPPORTED) or set(unsupported) - set(_UNSUPPORTED):
+    if unsupported and (any(unsupported.get(k) for k in _UNSUPPORTED)
+                        or set(unsupported) - set(_UNSUPPORTED)):
         raise TypeError(f"artiplan.records.dataclass does not support {sorted(unsupported)}: "
                         "use dataclasses.dataclass")
 
@@ -140,6 +141,7 @@ def _process(cls: type[T], params: dict[str, bool], slots: bool) -> type[T]:
 def _collect(cls: type) -> tuple[Field, ...]:
     """The fields of ``cls`` (its annotations), class attributes set as ``dataclasses`` does."""
     annotations = cls.__dict__.get("__annotations__", {})
+    std = sys.modules.get("dataclasses")  # its field() is accepted too, if it was imported
     fields = []
     for name, tp in annotations.items():
         text = tp if isinstance(tp, str) else repr(tp)
@@ -148,7 +150,7 @@ def _collect(cls: type) -> tuple[Field, ...]:
             raise TypeError(f"{cls.__name__}.{name}: ClassVar/InitVar/KW_ONLY are not "
                             "supported here: use dataclasses.dataclass")
         default = getattr(cls, name, MISSING)
-        spec = _as_field(default)
+        spec = _as_field(default, std)
         f = Field(default=default) if spec is None else spec
         if f.kw_only is True or not f.init:
             raise TypeError(f"{cls.__name__}.{name}: kw_only and init=False fields are not "
@@ -164,17 +166,16 @@ def _collect(cls: type) -> tuple[Field, ...]:
                 setattr(cls, name, f.default)
         fields.append(f)
     for name, value in cls.__dict__.items():
-        if _as_field(value) is not None and name not in annotations:
+        if name not in annotations and _as_field(value, std) is not None:
             raise TypeError(f"{name!r} is a field but has no type annotation")
     return tuple(fields)
 
 
-def _as_field(value: Any) -> Field | None:
+def _as_field(value: Any, std: Any) -> Field | None:
     """``value`` as a field's description if it is one (``field()`` of this module or of
-    ``dataclasses``), else None."""
+    ``dataclasses``, the module ``std`` when imported), else None."""
     if isinstance(value, Field):
         return value
-    std = sys.modules.get("dataclasses")
     if std is None or not isinstance(value, std.Field):
         return None
     return Field(**{k: MISSING if v is std.MISSING else v for k, v in (
