@@ -1,7 +1,7 @@
 """artiplan's planner on objects beyond the paper: 16, 20 and 30 links, 5 tasks per model.
 
 Usage:
-    .venv/bin/python benchmarks/planner_large.py OUTDIR [--time-limit 60] [--val]
+    .venv/bin/python benchmarks/planner_large.py OUTDIR [--time-limit 60] [--val] [--models M..]
 
 ``--val`` writes every plan next to its problem (``pN-S.plan``) and records stock VAL's verdict
 (``Validate -t 0.001`` under a 60 s CPU and 4 GB memory limit) in the row.
@@ -58,10 +58,12 @@ def main() -> int:
     ap.add_argument("outdir", type=Path)
     ap.add_argument("--time-limit", type=float, default=60.0)
     ap.add_argument("--val", action="store_true", help="check every plan with stock VAL")
+    ap.add_argument("--models", nargs="+", choices=list(MODELS), default=list(MODELS),
+                    help="run only these models (default: all)")
     args = ap.parse_args()
     generate(args.outdir)
     rows = []
-    for model in MODELS:
+    for model in args.models:
         for n in SIZES:
             for seed in range(1, 6):
                 t0 = time.perf_counter()
@@ -82,7 +84,7 @@ def main() -> int:
                 print(json.dumps(row), flush=True)
     print("| model | size | solved | median s | max s | VAL valid |")
     print("|---|---|---|---|---|---|")
-    for model in MODELS:
+    for model in args.models:
         for n in SIZES:
             rs = [r for r in rows if r["model"] == model and r["size"] == n]
             ts = [float(r["plan_s"]) for r in rs]  # type: ignore[arg-type]

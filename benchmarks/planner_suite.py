@@ -2,13 +2,15 @@
 
 Usage:
     .venv/bin/python benchmarks/planner_suite.py SUITE_DIR [--time-limit 10] [--jsonl out.jsonl]
-        [--only ng,ucm-0.1] [--process N]
+        [--only ng,ucm-0.1] [--process N] [--val]
 
 Per problem: status, planning time after parsing (in-process, ``search`` + ``compile`` +
 ``validate``; wall and CPU seconds: on a shared machine the CPU time is the stable one), time
 with loading, plan length and makespan. Per (model, size): solved / proven
 unsolvable / unknown, median / max / total time. With ``--process N``, also time N problems
-per model as separate ``artiplan plan`` processes (process start included).
+per model as separate ``artiplan plan`` processes (process start included). With ``--val``,
+each plan is written next to its problem (``pN-K.plan``) and judged by stock VAL
+(``Validate -t 0.001`` under a 60 s CPU and 4 GB memory limit): column ``val``.
 """
 
 from __future__ import annotations
@@ -24,6 +26,8 @@ from pathlib import Path
 
 from artiplan.pddl import load_task
 from artiplan.search.api import PlanStatus, plan_task
+from artiplan.semantics.plan import Plan
+from artiplan.semantics.plan_io import format_plan
 
 
 def problems(root: Path, only: set[str] | None) -> list[tuple[str, int, Path, Path]]:
@@ -38,7 +42,16 @@ def problems(root: Path, only: set[str] | None) -> list[tuple[str, int, Path, Pa
     return out
 
 
-def run_one(domain: Path, prob: Path, limit: float) -> dict[str, object]:
+def val_verdict(domain: Path, prob: Path, plan: Plan) -> str:
+    """Stock VAL's verdict on ``plan``, written to ``prob`` with suffix ``.plan``."""
+    from artiplan.backends.val import validate_with_val
+
+    path = prob.with_suffix(".plan")
+    path.write_text(format_plan(plan, events=False))
+    return validate_with_val(domain, prob, path, time_limit=60.0, memory_limit=4096.0).verdict
+
+
+def run_one(domain: Path, prob: Path, limit: float, val: bool = False) -> dict[str, object]:
     t0 = time.perf_counter()
     task = load_task(str(domain), str(prob))
     load_s = time.perf_counter() - t0
@@ -52,6 +65,7 @@ def run_one(domain: Path, prob: Path, limit: float) -> dict[str, object]:
         eff = task.action_by_signature(res.plan.actions[-1].signature).effect
         noop = not (eff.add or eff.delete or eff.numeric or eff.conditional)
     return {
+        **({"val": val_verdict(domain, prob, res.plan)} if val and res.plan else {}),
         "problem": str(prob), "status": res.status.value, "plan_s": plan_s,
         "plan_cpu_s": plan_cpu_s,
         "with_load_s": plan_s + load_s, "length": res.stats.get("plan_length"),
@@ -97,20 +111,26 @@ def main() -> int:
     ap.add_argument("--jsonl", type=Path)
     ap.add_argument("--only", default="")
     ap.add_argument("--process", type=int, default=0)
+    ap.add_argument("--val", action="store_true", help="judge every plan with stock VAL")
     args = ap.parse_args()
     rows = []
     only = set(args.only.split(",")) if args.only else None
     for model, size, domain, prob in problems(args.suite, only):
-        row = {"model": model, "size": size, **run_one(domain, prob, args.time_limit)}
+        row = {"model": model, "size": size,
+               **run_one(domain, prob, args.time_limit, args.val)}
         rows.append(row)
         print(f"{model:9s} {prob.stem:8s} {row['status']:10s} {row['plan_s']:.3f}s "
-              f"len={row['length']} mk={row['makespan']} exp={row['expanded']} {row['message']}",
+              f"len={row['length']} mk={row['makespan']} exp={row['expanded']} "
+              f"{row.get('val', '')} {row['message']}",
               file=sys.stderr, flush=True)
     if args.jsonl:
         with args.jsonl.open("w") as fh:
             for r in rows:
                 fh.write(json.dumps({"schema": 1, **r}) + "\n")
     print(summary(rows))
+    if args.val:
+        judged = [r for r in rows if "val" in r]
+        print(f"stock VAL: {sum(r['val'] == 'valid' for r in judged)}/{len(judged)} plans valid")
     if args.process:
         by_model: dict[str, list[float]] = {}
         for model, _size, domain, prob in problems(args.suite, only):

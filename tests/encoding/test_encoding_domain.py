@@ -147,6 +147,14 @@ def test_margin_scales_with_the_robot_speed() -> None:
     assert EncodingOptions("ng", speed_i=0.1, speed_d=0.1).margin == pytest.approx(0.01)
 
 
+def test_margin_with_gravity_covers_links_carried_by_falling_links() -> None:
+    # Carried by falling links a link turns far faster than the robot: the margin is sized
+    # for 50 deg/s (twice VAL's 0.01 s window), and still for a faster robot.
+    assert EncodingOptions("ucm").margin == pytest.approx(1.0)
+    assert EncodingOptions("uacm").margin == pytest.approx(1.0)
+    assert EncodingOptions("uacm", speed_i=100.0).margin == pytest.approx(2.0)
+
+
 @pytest.mark.parametrize("model", ["ng", "ucm", "uacm"])
 def test_no_process_reads_a_changing_fluent(model: str) -> None:
     """Every process starts and stops at a happening: its precondition reads facts and the
@@ -204,8 +212,15 @@ def test_gravity_processes_start_and_stop_at_happenings(model: str) -> None:
         # The events read the angle only: no action can trigger them.
         assert "held-index" not in str(start) + str(stop)
     dec = conjuncts(construct(d, ":event", "start-gravity-decrease")[":precondition"])
-    assert [">", ["angle", "?l", "z-axis"], "0.2"] in dec  # at rest within the margin: stays
-    assert ["<", ["angle", "?l", "z-axis"], "179.8"] in dec  # near 180: stays
+    assert [">", ["angle", "?l", "z-axis"], "1"] in dec  # at rest within the margin: stays
+    assert ["<", ["angle", "?l", "z-axis"], "179"] in dec  # near 180: stays
+    # Rest sets the angle to exactly 0; the vertical passed upward is a separate event.
+    rest = construct(d, ":event", "stop-gravity-decrease")
+    assert ["<=", ["angle", "?l", "z-axis"], "0"] in conjuncts(rest[":precondition"])
+    assert ["assign", ["angle", "?l", "z-axis"], "0"] in conjuncts(rest[":effect"])
+    passed = construct(d, ":event", "pass-gravity-decrease")
+    assert [">=", ["angle", "?l", "z-axis"], "180"] in conjuncts(passed[":precondition"])
+    assert ["not", ["decreasing-angle-gravity", "?l"]] in conjuncts(passed[":effect"])
 
 
 def test_uacm_speed_starts_at_zero_grows_with_acceleration_and_resets() -> None:

@@ -218,12 +218,17 @@ def _gravity(options: EncodingOptions, sign: str) -> str:
     reset = "\n      (assign (gravity-speed ?l) 0)" if uacm else ""
     azimuth = _azimuth(options, f"propagate-gravity-{sign}-azimuth",
                        f"(affects ?l1 ?l2)\n      ({flag} ?l1)\n      {_feels('?l1')}", sign, rate1)
+    rest = ""
     if sign == "decrease":
         below = fmt_number(180 - options.margin)
         start_range = f"(> (angle ?l {g}) {m})\n      (< (angle ?l {g}) {below})"
-        stop_range = f"(or\n        (<= (angle ?l {g}) 0)\n        (>= (angle ?l {g}) 180))"
+        stop_range = f"(<= (angle ?l {g}) 0)"
+        # At rest the angle is set to exactly 0 (its value at the event's root): links that
+        # came to rest apart must carry on with equal angles, or VAL sees their wraps a
+        # rounding error apart and reports one "does not falsify its precondition".
+        rest = f"\n      (assign (angle ?l {g}) 0)"
     else:
-        # The upper end needs no test: at 360 back-to-zero wraps the angle to 0 (<= 180).
+        # The upper end needs no test: at 360 back-to-zero wraps the angle to exactly 0.
         start_range = f"(> (angle ?l {g}) {fmt_number(180 + options.margin)})"
         stop_range = f"(<= (angle ?l {g}) 180)"
     return f"""
@@ -242,15 +247,15 @@ def _gravity(options: EncodingOptions, sign: str) -> str:
     :effect (and
       ({flag} ?l){reset}))
 
-  ;; Rest reached (or the vertical passed).
+  ;; Rest reached{" (or the vertical passed)" if sign == "increase" else ""}.
   (:event stop-gravity-{sign}
     :parameters (?l - link)
     :precondition (and
       ({flag} ?l)
       {stop_range})
     :effect (and
-      (not ({flag} ?l)){reset}))
-
+      (not ({flag} ?l)){rest}{reset}))
+{_pass_vertical(g, reset) if sign == "decrease" else ""}
   ;; Gravity turns ?l toward rest (0 == 360); exactly 180 stays.
   (:process gravity-{sign}
     :parameters (?l - link)
@@ -267,6 +272,21 @@ def _gravity(options: EncodingOptions, sign: str) -> str:
       {_feels("?l1")})
     :effect (and ({sign} (angle ?l2 {g}) (* #t {_carried(options, rate1, g)}))))
 {azimuth}"""
+
+
+def _pass_vertical(g: str, reset: str) -> str:
+    """The event that ends a decreasing link's fall when it is carried up past the vertical
+    (180): apart from the rest at 0, which sets the angle."""
+    return f"""
+  ;; The vertical passed, carried: gravity now turns ?l the other way.
+  (:event pass-gravity-decrease
+    :parameters (?l - link)
+    :precondition (and
+      (decreasing-angle-gravity ?l)
+      (>= (angle ?l {g}) 180))
+    :effect (and
+      (not (decreasing-angle-gravity ?l)){reset}))
+"""
 
 
 _ACCELERATE = f"""

@@ -10,6 +10,10 @@ from artiplan.tolerances import VAL_EVENT_WINDOW
 
 #: Smallest wrap-around and hysteresis margin [deg]: 100 times VAL's comparison slack.
 MIN_MARGIN = 0.01
+#: Link speed [deg/s] the margins of the gravity models are sized for. A link carried by
+#: falling links base-ward of it turns at the sum of their speeds, far above the robot's: up to
+#: 80 deg/s measured on 30-link UACM chains (benchmarks/results/semantics.md).
+GRAVITY_LINK_SPEED = 50.0
 
 Model = Literal["ng", "ucm", "uacm"]
 MODELS: tuple[str, ...] = ("ng", "ucm", "uacm")
@@ -94,10 +98,14 @@ class EncodingOptions:
 
         Two events of one motion (180 passed, then 180 + margin; 0 passed, then -margin) must
         be more than VAL's event window apart in time, or VAL merges them into one happening
-        and reports an event triggered twice: twice the window at the fastest robot speed,
-        and at least :data:`MIN_MARGIN` (0.2 deg at the default 10 deg/s).
+        and reports an event triggered twice: twice the window at the fastest link speed, and
+        at least :data:`MIN_MARGIN`. Without gravity that is the robot's speed (0.2 deg at the
+        default 10 deg/s); with gravity, links carried by falling links move faster: at least
+        :data:`GRAVITY_LINK_SPEED` (1 deg).
         """
         fastest = max(self.speed_i, self.speed_d)
+        if self.has_gravity:
+            fastest = max(fastest, GRAVITY_LINK_SPEED)
         return max(MIN_MARGIN, round(2.0 * VAL_EVENT_WINDOW * fastest, 6))
 
     @property

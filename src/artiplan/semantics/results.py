@@ -16,6 +16,7 @@ from artiplan.records import dataclass, field, names
 from artiplan.semantics.plan import Plan
 from artiplan.semantics.trajectory import Trajectory
 from artiplan.semantics.walks import robustness
+from artiplan.tolerances import VAL_EVENT_WINDOW
 
 TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
 if TYPE_CHECKING:
@@ -59,13 +60,18 @@ class Margins:
         event_gap_s: The closest an action comes to an event [s] (None without events).
         goal_margin: How far the goal is from failing at the end, in the units of its values
             (e.g. deg; None when it reads no number).
-        ok: Both at least what the planner aims for (``note`` says what is missing).
+        ok: All at least what the planner aims for (``note`` says what is missing).
+        object_event_gap_s: The closest two events of one object (their first argument, e.g.
+            a link) come at distinct times [s] (None when no object has two). Below VAL's
+            event window VAL fires the later one at the earlier one's happening, which can
+            re-enable an event that already fired there ("Attempt to trigger event twice").
     """
 
     event_gap_s: float | None
     goal_margin: float | None
     ok: bool
     note: str = ""
+    object_event_gap_s: float | None = None
 
 
 def margins_of(task: Task, plan: Plan, trajectory: Trajectory, event_gap: float) -> Margins:
@@ -74,14 +80,36 @@ def margins_of(task: Task, plan: Plan, trajectory: Trajectory, event_gap: float)
     gap = min(gaps) if gaps else None
     final = trajectory.final_state
     margin = robustness(task.goal, final.facts, final.values) if final is not None else None
+    pair = _object_event_gap(trajectory)
     notes = []
     if gap is not None and gap < event_gap - 1e-9:
         notes.append(f"an action {gap:.6f} s from an event (wanted {event_gap:g} s)")
+    if pair is not None and pair[0] < VAL_EVENT_WINDOW:
+        notes.append(f"two events of {pair[1]} {pair[0]:.6f} s apart (VAL merges events "
+                     f"within {VAL_EVENT_WINDOW:g} s)")
     if margin is not None and margin < GOAL_MARGIN_MIN:
         notes.append(f"the goal holds by only {margin:.2g} at the end")
     return Margins(None if gap is None else round(gap, 6),
                    None if margin is None or math.isinf(margin) else round(margin, 6),
-                   not notes, "; ".join(notes))
+                   not notes, "; ".join(notes),
+                   None if pair is None else round(pair[0], 6))
+
+
+def _object_event_gap(trajectory: Trajectory) -> tuple[float, str] | None:
+    """The smallest time between consecutive events of one object at distinct times [s], and
+    the object."""
+    last: dict[str, float] = {}
+    best: tuple[float, str] | None = None
+    for e in sorted(trajectory.events, key=lambda e: e.time):
+        if not e.args:
+            continue
+        obj = e.args[0]
+        prev = last.get(obj)
+        gap = None if prev is None else e.time - prev
+        if gap is not None and gap > 1e-6 and (best is None or gap < best[0]):
+            best = (gap, obj)
+        last[obj] = e.time
+    return best
 
 
 @dataclass
