@@ -31,7 +31,6 @@ from artiplan.pddl.task import Atom as _Atom
 from artiplan.pddl.task import Comparison as _Comparison
 from artiplan.semantics.cache import per_task
 from artiplan.semantics.walks import (
-    SOURCE_GLOBALS,
     Linear,
     comparison_source,
     condition_parts,
@@ -39,6 +38,8 @@ from artiplan.semantics.walks import (
     expr_source,
     fluents_of,
     linear,
+    source_definitions,
+    source_function,
 )
 from artiplan.tolerances import VAL, Tolerances
 
@@ -107,7 +108,7 @@ def compile_condition(
         return comparison_source(c, tol)
 
     src = condition_source(cond, comparison)
-    fn: CondFn = eval(f"lambda F, V: {src}", dict(SOURCE_GLOBALS))  # noqa: S307 - source generated from the task
+    fn: CondFn = source_function(f"lambda F, V: {src}")
     return fn, frozenset(used)
 
 
@@ -161,9 +162,8 @@ def compile_effect(eff: Effect, comps: ComparisonTable, tol: Tolerances) -> tupl
     split = ["def _parts(F, V):", "    add = 0", "    dele = 0", "    U = []"]
     _effect_lines(eff, "    ", cond_src, split, parts=True)
     split.append("    return add, dele, U")
-    namespace: dict[str, object] = dict(SOURCE_GLOBALS)
-    exec("\n".join(apply + split), namespace)  # noqa: S102 - source generated from the task
-    return namespace["_eff"], namespace["_parts"]  # type: ignore[return-value]
+    namespace = source_definitions("\n".join(apply + split))
+    return namespace["_eff"], namespace["_parts"]
 
 
 def is_noop(action: GroundAction) -> bool:
