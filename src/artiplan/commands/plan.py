@@ -93,6 +93,11 @@ def run(args: argparse.Namespace) -> int:
     if margins and not margins.get("ok", True):
         print(f"artiplan plan: warning: small margin: {margins.get('note')} (validators may "
               "disagree on this plan)", file=sys.stderr)
+    if margins and margins.get("coincident"):
+        times = ", ".join(f"{t:g}" for t in margins["coincident"][:3])
+        print(f"artiplan plan: warning: two objects' events coincide at t = {times} s (stock "
+              "VAL often rejects such an instant: benchmarks/results/semantics.md)",
+              file=sys.stderr)
     if result.stats.get("initial_events"):
         print("artiplan plan: warning: events are enabled in the initial state ("
               + ", ".join(result.stats["initial_events"][:3]) + "): they fire at time 0, but "

@@ -16,7 +16,6 @@ from artiplan.records import dataclass, field, names
 from artiplan.semantics.plan import Plan
 from artiplan.semantics.trajectory import Trajectory
 from artiplan.semantics.walks import robustness
-from artiplan.tolerances import VAL_EVENT_WINDOW
 
 TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
 if TYPE_CHECKING:
@@ -63,8 +62,14 @@ class Margins:
         ok: All at least what the planner aims for (``note`` says what is missing).
         object_event_gap_s: The closest two events of one object (their first argument, e.g.
             a link) come at distinct times [s] (None when no object has two). Below VAL's
-            event window VAL fires the later one at the earlier one's happening, which can
-            re-enable an event that already fired there ("Attempt to trigger event twice").
+            event window (0.01 s) VAL fires the later one at the earlier one's happening,
+            which can re-enable an event that already fired there ("Attempt to trigger event
+            twice"); a statistic, not counted in ``ok`` (VAL accepts most such plans).
+        coincident: Instants [s] at which events fired for two objects by two crossings of
+            their own (two links wrapping at once), not at an action's time. VAL computes
+            the two crossings a rounding error apart and rejects the plan ("does not falsify
+            its precondition", benchmarks/results/semantics.md); not counted in ``ok``: the
+            dynamics, not the plan's timing, often make them.
     """
 
     event_gap_s: float | None
@@ -72,6 +77,7 @@ class Margins:
     ok: bool
     note: str = ""
     object_event_gap_s: float | None = None
+    coincident: tuple[float, ...] = ()
 
 
 def margins_of(task: Task, plan: Plan, trajectory: Trajectory, event_gap: float) -> Margins:
@@ -84,15 +90,24 @@ def margins_of(task: Task, plan: Plan, trajectory: Trajectory, event_gap: float)
     notes = []
     if gap is not None and gap < event_gap - 1e-9:
         notes.append(f"an action {gap:.6f} s from an event (wanted {event_gap:g} s)")
-    if pair is not None and pair[0] < VAL_EVENT_WINDOW:
-        notes.append(f"two events of {pair[1]} {pair[0]:.6f} s apart (VAL merges events "
-                     f"within {VAL_EVENT_WINDOW:g} s)")
     if margin is not None and margin < GOAL_MARGIN_MIN:
         notes.append(f"the goal holds by only {margin:.2g} at the end")
     return Margins(None if gap is None else round(gap, 6),
                    None if margin is None or math.isinf(margin) else round(margin, 6),
                    not notes, "; ".join(notes),
-                   None if pair is None else round(pair[0], 6))
+                   None if pair is None else round(pair[0], 6),
+                   _coincident(plan, trajectory))
+
+
+def _coincident(plan: Plan, trajectory: Trajectory) -> tuple[float, ...]:
+    """Instants (not an action's) at which events fired for several first arguments."""
+    actions = {round(a.time, 6) for a in plan.actions}
+    seen: dict[float, set[str]] = {}
+    for e in trajectory.events:
+        t = round(e.time, 6)
+        if e.args and t not in actions and not e.after_actions:
+            seen.setdefault(t, set()).add(e.args[0])
+    return tuple(sorted(t for t, objs in seen.items() if len(objs) > 1))
 
 
 def _object_event_gap(trajectory: Trajectory) -> tuple[float, str] | None:
