@@ -9,7 +9,7 @@ that gets busier or quieter favours none. Kairos (``kairos solve``, the command 
 ``artiplan.backends.kairos``) runs side by side when the backend finds its executable.
 
     python benchmarks/startup.py --suite SUITE --old-src /tmp/old/src -n 15 \\
-        ng/p3-1 ucm-0.5/p3-1 uacm-0.5/p3-1
+        [--other main=/tmp/main/src] ng/p3-1 ucm-0.5/p3-1 uacm-0.5/p3-1
 
 Prints min / median / max per problem and side, the plan of each side once (same or not), the
 load average before and after (a load above 1.5 on this 2-core machine makes the numbers
@@ -78,6 +78,8 @@ def main() -> None:
                     help="a suite folder (artiplan suite): FAMILY/domain.pddl, FAMILY/NAME.pddl")
     ap.add_argument("--src", type=Path, default=SRC, help="src/ of the new version (this tree)")
     ap.add_argument("--old-src", type=Path, help="src/ of the old version")
+    ap.add_argument("--other", action="append", default=[], metavar="LABEL=SRC",
+                    help="another version's src/ as a column of its own (repeatable)")
     ap.add_argument("-n", "--runs", type=int, default=15, help="runs per problem and side")
     ap.add_argument("--no-kairos", action="store_true", help="leave Kairos out")
     ap.add_argument("-o", "--out", type=Path, help="write every run's numbers here (JSON)")
@@ -86,6 +88,11 @@ def main() -> None:
     sides: dict[str, Path] = {"new": args.src.resolve()}
     if args.old_src is not None:
         sides["old"] = args.old_src.resolve()
+    for item in args.other:
+        label, _, src = item.partition("=")
+        if not src or label in sides or label == "kairos":
+            ap.error(f"--other wants LABEL=SRC with a new label, got {item!r}")
+        sides[label] = Path(src).resolve()
     for src in sides.values():
         subprocess.run([sys.executable, "-m", "compileall", "-q", str(src)], check=True)
     load_before = load_average()
@@ -101,7 +108,8 @@ def main() -> None:
     with tempfile.TemporaryDirectory() as tmp:
         for pid in args.problems:
             family, name = pid.split("/")
-            domain, problem = args.suite / family / "domain.pddl", args.suite / family / f"{name}.pddl"
+            domain = args.suite / family / "domain.pddl"
+            problem = args.suite / family / f"{name}.pddl"
             cmds: dict[str, tuple[list[str], dict[str, str]]] = {}
             for side, src in sides.items():
                 out = str(Path(tmp) / f"{side}.plan")
@@ -139,6 +147,8 @@ def main() -> None:
                  if "old" in row else "")
         same = "" if len(sides) == 1 else f", same plan: {'yes' if row['same_plan'] else 'NO'}"
         print(f"  {pid}: " + "; ".join(cells) + ratio + same)
+    if max(load_before, report["load"]["after"]) > MAX_LOAD:
+        print(f"note: load average above {MAX_LOAD} during the run: numbers doubtful, rerun")
     if args.out:
         args.out.write_text(json.dumps(report, indent=1) + "\n")
 
