@@ -11,9 +11,9 @@ that gets busier or quieter favours none. Kairos (``kairos solve``, the command 
     python benchmarks/startup.py --suite SUITE --old-src /tmp/old/src -n 15 \\
         [--other main=/tmp/main/src] ng/p3-1 ucm-0.5/p3-1 uacm-0.5/p3-1
 
-Prints min / median / max per problem and side, the plan of each side once (same or not), the
-load average before and after (a load above 1.5 on this 2-core machine makes the numbers
-doubtful: rerun).
+Prints min / median / max per problem and side, whether the sides' plans are the same, and the
+load average before and after (after includes this benchmark's own runs, about 1; a load above
+1.5 before the run, from other jobs on this 2-core machine, makes the numbers doubtful: rerun).
 """
 
 from __future__ import annotations
@@ -147,8 +147,9 @@ def main() -> None:
                  if "old" in row else "")
         same = "" if len(sides) == 1 else f", same plan: {'yes' if row['same_plan'] else 'NO'}"
         print(f"  {pid}: " + "; ".join(cells) + ratio + same)
-    if max(load_before, report["load"]["after"]) > MAX_LOAD:
-        print(f"note: load average above {MAX_LOAD} during the run: numbers doubtful, rerun")
+    if load_before > MAX_LOAD:
+        print(f"note: load average {load_before:.2f} > {MAX_LOAD} before the run (other jobs): "
+              "numbers doubtful, rerun")
     if args.out:
         args.out.write_text(json.dumps(report, indent=1) + "\n")
 
