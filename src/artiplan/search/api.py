@@ -12,28 +12,28 @@ A plan the validator rejects is never returned as solved: the search goes on (co
 
 from __future__ import annotations
 
-import dataclasses
 import time
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 from artiplan.errors import InvalidPlanError, UsageError
 from artiplan.pddl.task import Task
+from artiplan.records import dataclass, names, replace
 from artiplan.search.engine import Apply, Search, SearchConfig, SearchOutcome, initial_node
 from artiplan.search.heuristic import Heuristic, HeuristicConfig, RateHeuristic
 from artiplan.search.improve import improve
 from artiplan.search.limits import LimitReached, Limits
-from artiplan.search.numeric import NumericHeuristic
 from artiplan.search.proofs import prove_unsolvable
-from artiplan.search.timing import Repair, repair_times
 from artiplan.semantics.compiled import CompiledTask, compile_task
 from artiplan.semantics.kernel import Kernel
 from artiplan.semantics.plan import Plan, TimedAction, TimedEvent, fold_durative
 from artiplan.semantics.results import PlanResult, PlanStats, PlanStatus, margins_of
 from artiplan.semantics.validator import ValidationReport, enabled_initial_events, validate
 from artiplan.tolerances import VAL_EVENT_WINDOW, VAL_TIME_TOLERANCE
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 __all__ = ["OPTIONS", "PlanResult", "PlanStats", "PlanStatus", "PlannerConfig", "plan",
            "plan_task"]
@@ -88,8 +88,8 @@ class PlannerConfig:
 
 
 #: The planner's keyword options (name -> the field's type), for scripts and front ends.
-OPTIONS: dict[str, type] = {f.name: type(f.default) for f in dataclasses.fields(PlannerConfig)
-                            if f.name != "heuristic"}
+OPTIONS: dict[str, type] = {name: type(getattr(PlannerConfig, name))
+                            for name in names(PlannerConfig) if name != "heuristic"}
 
 #: ``on_progress(elapsed [s], statistics so far)``: called every 2 s of a long planning call.
 Progress = Callable[[float, PlanStats], None]
@@ -174,7 +174,7 @@ def plan_task(
     chains); ``on_progress`` is called about every 2 s with the counters so far.
     """
     if config is None or options:
-        config = dataclasses.replace(config, **options) if config else PlannerConfig.of(**options)
+        config = replace(config, **options) if config else PlannerConfig.of(**options)
     run = _Planning(task, config, time_limit, memory_limit, on_progress)
     t0 = time.perf_counter()
     try:
@@ -207,7 +207,7 @@ class _Planning:
 
     def _report(self, elapsed: float) -> None:
         assert self.on_progress is not None
-        now = dataclasses.replace(self.stats)
+        now = replace(self.stats)
         if self.running is not None:
             now.add(self.running.stats)
         self.on_progress(elapsed, now)
@@ -283,13 +283,17 @@ class _Planning:
         hc = HeuristicConfig(time_weight=weight, damage_cost=attempt.damage)
         if not attempt.numeric:
             return config.heuristic(self.ct, hc, self.kernel.active), config.search()
+        from artiplan.search.numeric import NumericHeuristic  # here: general domains only
+
         heur = NumericHeuristic(self.ct, hc, self.kernel.active)
-        return heur, dataclasses.replace(config.search(), delta=attempt.delta,
+        return heur, replace(config.search(), delta=attempt.delta,
                                          before_events=True, g_weight=1.0)
 
     def _repair(self, actions: list[int], times: list[float]) -> bool:
         """A timing repair of a skeleton (:mod:`artiplan.search.timing`); True when the
         repaired plan is valid (it becomes the best plan)."""
+        from artiplan.search.timing import Repair, repair_times  # here: general domains only
+
         t = time.perf_counter()
         settings = Repair(epsilon=self.config.epsilon, event_gap=self.config.event_gap)
         evals: list[int] = []
@@ -310,7 +314,7 @@ class _Planning:
             return True
         report = self._validate(found)
         if report.valid:
-            found = dataclasses.replace(found, events=tuple(report.events))
+            found = replace(found, events=tuple(report.events))
             self.best = (found, report)
             return True
         self.stats.rejected_reasons.append(report.reason)
@@ -358,7 +362,7 @@ class _Planning:
         winner = self.winner
 
         def heuristic(ct: CompiledTask, hc: HeuristicConfig, active: Any) -> Heuristic:
-            return self._attempt(dataclasses.replace(winner, damage=hc.damage_cost),
+            return self._attempt(replace(winner, damage=hc.damage_cost),
                                  hc.time_weight)[0]
 
         best, report = improve(self.ct, self.kernel, self._attempt(winner)[1], self.limits,

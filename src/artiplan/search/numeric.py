@@ -26,8 +26,6 @@ import heapq
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
-from typing import Literal
 
 from artiplan.pddl.task import (
     Atom,
@@ -40,6 +38,7 @@ from artiplan.pddl.task import (
     NumExpr,
     Truth,
 )
+from artiplan.records import dataclass
 from artiplan.search.heuristic import Evaluation, GoalGroup, HeuristicConfig, propagate
 from artiplan.semantics.compiled import CompiledTask, compile_condition
 from artiplan.semantics.walks import (
@@ -49,6 +48,10 @@ from artiplan.semantics.walks import (
     linear,
     source_function,
 )
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Literal
 
 Values = tuple[float, ...]
 PFn = Callable[[Values], float]

@@ -14,8 +14,6 @@ Compiling costs a few milliseconds per hundred operators and happens once per ta
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
-from typing import Any
 
 from artiplan.pddl.task import (
     And,
@@ -30,6 +28,7 @@ from artiplan.pddl.task import (
 )
 from artiplan.pddl.task import Atom as _Atom
 from artiplan.pddl.task import Comparison as _Comparison
+from artiplan.records import dataclass, field
 from artiplan.semantics.cache import per_task
 from artiplan.semantics.walks import (
     Linear,
@@ -43,6 +42,10 @@ from artiplan.semantics.walks import (
     source_function,
 )
 from artiplan.tolerances import VAL, Tolerances
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 CondFn = Callable[[int, tuple[float, ...]], bool]
 EffectFn = Callable[[int, tuple[float, ...]], tuple[int, tuple[float, ...]]]

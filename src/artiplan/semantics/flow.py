@@ -21,9 +21,9 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 
 from artiplan.pddl.task import BinOp, Const, FluentRef, NumExpr
+from artiplan.records import dataclass
 from artiplan.semantics import polynomial as P
 from artiplan.semantics.compiled import Comparison, Process
 from artiplan.semantics.walks import (

@@ -6,18 +6,20 @@ users (``execution``, ``bench``, ``up``), so that none of them imports another f
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Iterator, Mapping
-from dataclasses import dataclass, field
 from enum import Enum
-from typing import Any
 
 from artiplan.errors import ExitCode
 from artiplan.pddl.task import Task
+from artiplan.records import dataclass, field, names
 from artiplan.semantics.plan import Plan
 from artiplan.semantics.trajectory import Trajectory
 from artiplan.semantics.walks import robustness
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 
 class PlanStatus(Enum):
@@ -126,7 +128,7 @@ def _object_event_gap(trajectory: Trajectory) -> tuple[float, str] | None:
 
 
 @dataclass
-class PlanStats(Mapping[str, Any]):
+class PlanStats(Mapping[str, "Any"]):
     """Counters and timings of a planning call (typed; also readable as a mapping, e.g.
     ``stats["expanded"]``, for scripts and JSON).
 
@@ -189,19 +191,27 @@ class PlanStats(Mapping[str, Any]):
 
     def as_dict(self) -> dict[str, Any]:
         """Every field, JSON-ready (``margins`` as a dict)."""
+        import dataclasses
+
         return dataclasses.asdict(self)
 
     def __getitem__(self, key: str) -> Any:
-        if key not in self.__dataclass_fields__:
+        if key not in _STAT_KEYS:
             raise KeyError(key)
         value = getattr(self, key)
-        return dataclasses.asdict(value) if isinstance(value, Margins) else value
+        if isinstance(value, Margins):  # as dataclasses.asdict (its fields are scalars)
+            return {name: getattr(value, name) for name in names(Margins)}
+        return value
 
     def __iter__(self) -> Iterator[str]:
-        return iter(self.__dataclass_fields__)
+        return iter(_STAT_NAMES)
 
     def __len__(self) -> int:
-        return len(self.__dataclass_fields__)
+        return len(_STAT_NAMES)
+
+
+_STAT_NAMES = names(PlanStats)
+_STAT_KEYS = frozenset(_STAT_NAMES)
 
 
 @dataclass

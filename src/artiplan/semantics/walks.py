@@ -13,7 +13,6 @@ import functools
 import math
 from collections.abc import Callable, Sequence
 from types import CodeType
-from typing import Any
 
 from artiplan.pddl.task import (
     And,
@@ -32,6 +31,10 @@ from artiplan.pddl.task import (
 )
 from artiplan.semantics import polynomial as P
 from artiplan.tolerances import VAL, Tolerances
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 #: A linear form ``({fluent: coefficient}, constant)``.
 Linear = tuple[dict[int, float], float]
