@@ -48,3 +48,42 @@ def test_closest_events_of_one_object() -> None:
     # L3: 3 -> -0.2 at 0.32 s (to 359.8), 358 at 0.5, over 360 at 0.701: 0.381 s apart
     # (L2: 0.17 and 0.851 s)
     assert m.object_event_gap_s == pytest.approx(0.381, abs=1e-6)
+
+
+def test_separate_pulls_apart_crossings_the_plan_made_coincide() -> None:
+    from artiplan.search.separate import separate
+
+    # Turn L3 onto L2's angle (4.5 -> 1.5), then carry both down through -0.2 together.
+    init = Configuration.from_angles([0, 0, 0], [0, 1.5, 4.5])
+    target = Configuration.from_angles([0, 0, 0], [0, 358.5, 358.5])
+    options = EncodingOptions("ng")
+    task = load_task(domain_pddl(OBJ, options), problem_pddl(OBJ, init, target, options, "window"))
+    plan = parse_plan("0: (start-decrease L2 L3 z-axis)\n0.3: (stop-decrease L2 L3 z-axis)\n"
+                      "0.301: (start-decrease L1 L2 z-axis)\n0.601: (stop-decrease L1 L2 z-axis)\n"
+                      "0.7: (observe)\n")
+    report = validate(task, plan)
+    assert report.valid and report.trajectory is not None, report.reason
+    assert margins_of(task, plan, report.trajectory, 0.015).coincident == (0.471,)
+    found = separate(task, plan, report, 0.015, lambda p: validate(task, p), lambda: False)
+    assert found is not None
+    better, got = found
+    assert got.valid and got.trajectory is not None
+    assert margins_of(task, better, got.trajectory, 0.015).coincident == ()
+    # the tail moved by a few milliseconds, the order of the actions kept
+    shifts = [round(b.time - a.time, 6) for a, b in zip(plan.actions, better.actions, strict=True)]
+    assert shifts[0] == 0.0 and len(set(shifts[1:])) == 1 and 0 < abs(shifts[-1]) < 0.01
+
+
+def test_separate_leaves_crossings_of_the_initial_dynamics() -> None:
+    from artiplan.search.separate import separate
+
+    # L2 and L3 start at one angle: every shift of the plan moves both alike.
+    init = Configuration.from_angles([0, 0, 0], [0, 1.5, 1.5])
+    options = EncodingOptions("ng")
+    task = load_task(domain_pddl(OBJ, options), problem_pddl(OBJ, init, init, options, "window"))
+    plan = parse_plan(PLAN)
+    report = validate(task, plan)
+    assert report.valid and report.trajectory is not None, report.reason
+    assert margins_of(task, plan, report.trajectory, 0.015).coincident == (0.17,)
+    found = separate(task, plan, report, 0.015, lambda p: validate(task, p), lambda: False)
+    assert found is None

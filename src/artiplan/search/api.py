@@ -57,6 +57,8 @@ class PlannerConfig:
         value_precision: Decimals of values in duplicate detection.
         validate: Check every plan with the validator before returning it.
         improve: Search on for a better plan within an expansion budget.
+        separate: Shift the plan's tail by a few ms where its timing makes two objects cross
+            a boundary at one instant, which stock VAL mis-handles (:mod:`separate`).
         heuristic: Builds the search's heuristic (another one plugs in here).
     """
 
@@ -67,6 +69,7 @@ class PlannerConfig:
     value_precision: int = 6
     validate: bool = True
     improve: bool = True
+    separate: bool = True
     heuristic: HeuristicFactory = RateHeuristic
 
     @classmethod
@@ -126,6 +129,8 @@ FIRST = (Attempt(False, None, 2.0, 20), Attempt(False, None, 5.0, 40),
 #: Free-wait steps [s] of the rounds after ``FIRST`` (each round doubles the budgets); the
 #: finest one is searched without a budget.
 DELTAS = (1.0, 0.5, 0.25, 0.1, 0.05)
+#: Most seconds the separation of coincident crossings may take (see PlannerConfig.separate).
+SEPARATE_S = 10.0
 
 
 def schedule() -> Iterator[Attempt]:
@@ -226,6 +231,8 @@ class _Planning:
                               "plan (not a proof: waits stop only at critical times)")
         if self.config.improve:
             self._improve()
+        if self.config.validate and self.config.separate:
+            self._separate()
         found, report = self.best
         stats = self.stats
         stats.plan_length, stats.makespan = len(found.actions), found.makespan
@@ -342,6 +349,29 @@ class _Planning:
         report = validate(self.task, found, check=self.limits.check, initial_events=True)
         self.stats.validate_s += time.perf_counter() - t
         return report
+
+    def _separate(self) -> None:
+        """Pull apart crossings the plan's timing makes coincide, within at most half the time
+        left (and :data:`SEPARATE_S` without a limit); the plan stays if none helps."""
+        from artiplan.search.separate import separate
+
+        assert self.best is not None
+        found, report = self.best
+        if report is None:
+            return
+        remaining = self.limits.remaining()
+        budget = SEPARATE_S if remaining is None else min(SEPARATE_S, 0.5 * remaining)
+        stop = time.monotonic() + budget
+        t = time.perf_counter()
+        try:
+            better = separate(self.task, found, report, self.config.event_gap, self._validate,
+                              lambda: time.monotonic() > stop)
+        except LimitReached:
+            better = None
+        self.stats.separate_s = time.perf_counter() - t
+        if better is not None:
+            self.best = better
+            self.stats.separated = True
 
     def _improve(self) -> None:
         """The anytime phase (:mod:`artiplan.search.improve`): a better validated plan."""

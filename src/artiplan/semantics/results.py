@@ -139,9 +139,10 @@ class PlanStats(Mapping[str, "Any"]):
     ``attempts`` (restarts), ``repairs`` / ``repaired`` (timing repairs tried / that gave the
     plan), ``repair_evals`` (their trajectory simulations). Seconds: ``parse_s``, ``ground_s``,
     ``compile_s``, ``search_s``,
-    ``heuristic_s``, ``validate_s``, ``improve_s``, ``total_s``. The plan: ``plan_length``,
-    ``makespan`` [s], ``validated``, ``margins``. The improvement phase: ``improve_*``,
-    ``first_makespan``, ``first_length``.
+    ``heuristic_s``, ``validate_s``, ``improve_s``, ``separate_s``, ``total_s``. The plan:
+    ``plan_length``, ``makespan`` [s], ``validated``, ``margins``, ``separated`` (its tail
+    shifted to pull coincident crossings apart, :mod:`artiplan.search.separate`). The
+    improvement phase: ``improve_*``, ``first_makespan``, ``first_length``.
     """
 
     expanded: int = 0
@@ -167,11 +168,13 @@ class PlanStats(Mapping[str, "Any"]):
     heuristic_s: float = 0.0
     validate_s: float = 0.0
     improve_s: float = 0.0
+    separate_s: float = 0.0
     repair_s: float = 0.0
     total_s: float = 0.0
     plan_length: int | None = None
     makespan: float | None = None
     validated: bool = False
+    separated: bool = False
     margins: Margins | None = None
     initial_events: list[str] = field(default_factory=list)
     rejected_reasons: list[str] = field(default_factory=list)
