@@ -27,12 +27,17 @@ HERE = Path(__file__).resolve()
 NEW_SRC = HERE.parents[1] / "src"
 
 
-def child(suite: str) -> None:
-    """Plan every problem of ``suite``; one JSON line per problem on stdout."""
+def child(suite: str, cold: bool = False) -> None:
+    """Plan every problem of ``suite``; one JSON line per problem on stdout. ``cold``: empty
+    the process-wide cache of compiled sources before each problem (as in a fresh process)."""
     import artiplan
     from artiplan.bench.suite import load_suite
 
     for p in load_suite(suite):
+        walks = sys.modules.get("artiplan.semantics.walks")  # imported by the first plan
+        clear = getattr(getattr(walks, "_code", None), "cache_clear", None)
+        if cold and clear is not None:
+            clear()
         t = time.process_time()
         r = artiplan.plan(p.domain, p.problem, time_limit=120)
         cpu = time.process_time() - t
@@ -43,9 +48,10 @@ def child(suite: str) -> None:
         }), flush=True)
 
 
-def run_side(src: Path, suite: Path) -> dict[str, dict[str, Any]]:
+def run_side(src: Path, suite: Path, cold: bool = False) -> dict[str, dict[str, Any]]:
     env = dict(os.environ, PYTHONPATH=str(src), PYTHONHASHSEED="0")
-    proc = subprocess.run([sys.executable, str(HERE), "--child", str(suite)], env=env,
+    proc = subprocess.run([sys.executable, str(HERE), "--child", str(suite),
+                           *(["--cold"] if cold else [])], env=env,
                           capture_output=True, text=True, check=True)
     rows = [json.loads(line) for line in proc.stdout.splitlines() if line.startswith("{")]
     return {r["id"]: r for r in rows}
@@ -80,9 +86,12 @@ def main() -> None:
     ap.add_argument("--new-src", type=Path, default=NEW_SRC)
     ap.add_argument("--rounds", type=int, default=2, help="rounds per side (alternating)")
     ap.add_argument("-o", "--out", type=Path, help="write the per-problem numbers (JSON)")
+    ap.add_argument("--cold", action="store_true",
+                    help="empty the compiled-source cache before each problem (a side that "
+                    "has one), as if each problem ran in a fresh process")
     args = ap.parse_args()
     if args.child:
-        child(args.child)
+        child(args.child, args.cold)
         return
     if args.old_src is None:
         ap.error("--old-src is required")
@@ -96,7 +105,7 @@ def main() -> None:
         for k in range(args.rounds):
             for side in (order if k % 2 == 0 else order[::-1]):
                 print(f"round {k + 1}: {side} ...", file=sys.stderr, flush=True)
-                results[side].append(run_side(srcs[side], suites[side]))
+                results[side].append(run_side(srcs[side], suites[side], args.cold))
     old, new = merge(results["old"]), merge(results["new"])
     both = [pid for pid in old if old[pid]["status"] == new.get(pid, {}).get("status") == "solved"]
     quality = {"new_better_or_equal": 0, "new_worse": 0}
@@ -108,7 +117,7 @@ def main() -> None:
     so, sn = summary("old", old), summary("new", new)
     report = {
         "machine": os.uname().nodename, "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
-        "rounds": args.rounds, "old": so, "new": sn,
+        "rounds": args.rounds, "cold": args.cold, "old": so, "new": sn,
         "median_ratio_new_old": sn["median_cpu_s"] / so["median_cpu_s"],
         "total_ratio_new_old": sn["total_cpu_s"] / so["total_cpu_s"],
         "quality_on_both_solved": quality,

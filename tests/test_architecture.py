@@ -29,7 +29,7 @@ LAYERS = [
     "commands",
 ]
 #: Importable from anywhere.
-SHARED = {"errors", "tolerances"}
+SHARED = {"errors", "tolerances", "records"}
 
 
 def _layer(module: str) -> str | None:

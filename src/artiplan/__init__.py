@@ -6,7 +6,9 @@ The pipeline, one sub-package a stage: ``model`` -> ``encoding`` -> ``pddl`` -> 
 
 from __future__ import annotations
 
-from typing import Any
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 __version__ = "0.1.0"
 

@@ -50,19 +50,51 @@ def process_start() -> float:
         return time.time()
 
 
+class HelpFormatter(argparse.HelpFormatter):
+    """argparse's formatter, as wide as argparse makes it, without importing ``shutil`` (and
+    its compression modules: a noticeable share of a short command's start) to find out."""
+
+    def __init__(self, prog: str, indent_increment: int = 2, max_help_position: int = 24,
+                 width: int | None = None) -> None:
+        super().__init__(prog, indent_increment, max_help_position,
+                         terminal_columns() - 2 if width is None else width)
+
+
+def terminal_columns() -> int:
+    """``shutil.get_terminal_size().columns``: COLUMNS, else stdout's terminal, else 80."""
+    try:
+        columns = int(os.environ["COLUMNS"])
+    except (KeyError, ValueError):
+        columns = 0
+    if columns > 0:
+        return columns
+    try:
+        return os.get_terminal_size(sys.__stdout__.fileno()).columns or 80  # type: ignore[union-attr]
+    except (AttributeError, ValueError, OSError):
+        return 80
+
+
 REPORT_URL = "the project's issue tracker (include the command line and the traceback above)"
 
 
-def build_parser() -> tuple[argparse.ArgumentParser, dict[str, argparse.ArgumentParser]]:
+def build_parser(
+    only: str | None = None,
+) -> tuple[argparse.ArgumentParser, dict[str, argparse.ArgumentParser]]:
+    """The parser and the sub-commands' parsers (empty: ``add_arguments`` fills them); with
+    ``only``, that sub-command's alone (a parser a command costs a noticeable share of a short
+    command's start)."""
     parser = argparse.ArgumentParser(
         prog="artiplan",
         description="Plan and execute the reshaping of articulated objects with PDDL+ and gravity.",
+        formatter_class=HelpFormatter,
     )
     parser.add_argument("--version", action="version", version=f"artiplan {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
     subparsers = {}
     for name, (_module, help_text) in COMMANDS.items():
-        subparsers[name] = sub.add_parser(name, help=help_text, description=help_text)
+        if only is None or name == only:
+            subparsers[name] = sub.add_parser(name, help=help_text, description=help_text,
+                                              formatter_class=HelpFormatter)
     return parser, subparsers
 
 
@@ -83,9 +115,12 @@ def main(argv: Sequence[str] | None = None) -> int:
     once its output is flushed (see ``QUICK_EXIT``)."""
     argv_is_process = argv is None
     argv = list(sys.argv[1:] if argv is None else argv)
-    parser, subparsers = build_parser()
-    # Find the sub-command first so only its module is imported.
+    # Find the sub-command first so only its module is imported, and only its parser built:
+    # all of them only for the top-level help and errors (an option before the command, an
+    # unknown command), which list every command.
     name = next((a for a in argv if not a.startswith("-")), None)
+    alone = name in COMMANDS and argv.index(name) == 0
+    parser, subparsers = build_parser(name if alone else None)
     if name in COMMANDS:
         module = _load(name)
         if module is None:

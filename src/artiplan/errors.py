@@ -6,8 +6,9 @@ Every error that reaches the command line maps to exactly one code.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from enum import IntEnum
+
+from artiplan.records import dataclass
 
 
 class ExitCode(IntEnum):

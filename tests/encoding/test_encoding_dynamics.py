@@ -73,18 +73,17 @@ def test_ucm_falls_at_constant_speed_and_stops_at_rest() -> None:
     traj = simulate(task, parse_plan("60: (observe)\n"))
     assert traj.value("(angle L2 z-axis)", 10.0) == pytest.approx(20.0)
     assert traj.value("(angle L2 z-axis)", 60.0) == pytest.approx(0.0, abs=1e-3)  # rest, no wrap
-    # L3 hangs at rest: carried below 0 it wraps to 359 once (the margin: 1 deg with gravity),
-    # then its own fall toward 360 cancels the carry exactly, so it stays hanging; when L2
-    # rests (30 s) L3 rises the last 1 deg and wraps onto 0. One wrap each way, no bouncing.
-    assert opts.margin == pytest.approx(1.0)
-    assert traj.value("(angle L3 z-axis)", 10.0) == pytest.approx(359.0)
+    # L3 hangs at rest: carried below 0 it wraps to 359.8 once (the margin: 0.2 deg), then its
+    # own fall toward 360 cancels the carry exactly, so it stays hanging; when L2 rests (30 s)
+    # L3 rises the last 0.2 deg and wraps onto 0. One wrap each way, no bouncing.
+    assert traj.value("(angle L3 z-axis)", 10.0) == pytest.approx(359.8)
     assert traj.value("(angle L3 z-axis)", 60.0) == pytest.approx(0.0, abs=1e-3)
     assert [(round(e.time, 3), e.name, e.args) for e in traj.events] == [
-        (1.0, "back-to-360", ("L3", "z-axis")),
-        (1.0, "start-gravity-increase", ("L3",)),  # 359: gravity pulls it up to 360
+        (0.2, "back-to-360", ("L3", "z-axis")),
+        (0.2, "start-gravity-increase", ("L3",)),  # 359.8: gravity pulls it up to 360
         (30.0, "stop-gravity-decrease", ("L2",)),  # L2 at rest
-        (31.0, "back-to-zero", ("L3", "z-axis")),
-        (31.0, "stop-gravity-increase", ("L3",)),
+        (30.2, "back-to-zero", ("L3", "z-axis")),
+        (30.2, "stop-gravity-increase", ("L3",)),
     ]
 
 

@@ -70,16 +70,20 @@ def test_controls_are_the_fluents_actions_step_between_bounds() -> None:
 
 def test_point_time_is_the_bang_bang_optimum() -> None:
     # rest to rest over 50 with +-2: 2 * sqrt(50 / 2), switching half way
-    t, up, first = point_time(50.0, 0.0, 0.0, 2.0, 2.0)
+    found = point_time(50.0, 0.0, 0.0, 2.0, 2.0)
+    t, up, first = found.time, found.up, found.first
     assert t == pytest.approx(10.0) and up and first == pytest.approx(5.0)
     # a cap at 4: 2 s up (then a cruise needs another level), 2 s down, 42 m cruising
-    t, _, first = point_time(50.0, 0.0, 0.0, 2.0, 2.0, vhi=4.0)
+    found = point_time(50.0, 0.0, 0.0, 2.0, 2.0, vhi=4.0)
+    t, _, first = found.time, found.up, found.first
     assert t == pytest.approx(4.0 + 42.0 / 4.0) and first == pytest.approx(2.0)
     # moving at 10 toward a point 10 ahead, braking at 1: overshoot by 40, then come back
-    t, up, _ = point_time(10.0, 10.0, 0.0, 1.0, 1.0)
+    found = point_time(10.0, 10.0, 0.0, 1.0, 1.0)
+    t, up, _ = found.time, found.up, found.first
     assert t == pytest.approx(10.0 + 2.0 * math.sqrt(40.0)) and not up
     # cannot accelerate: cruise, then brake
-    t, _, first = point_time(100.0, 18.0, 0.0, 0.0, 3.0)
+    found = point_time(100.0, 18.0, 0.0, 0.0, 3.0)
+    t, _, first = found.time, found.up, found.first
     assert t == pytest.approx((100.0 - 54.0) / 18.0 + 6.0, rel=1e-6)
     assert first == pytest.approx((100.0 - 54.0) / 18.0, rel=1e-6)
 
@@ -88,7 +92,8 @@ def test_a_tabulated_rate_agrees_with_the_closed_form_and_sees_drag() -> None:
     up = Rate(lambda w: 2.0 + 1e-9 * w * w, -20.0, 20.0)  # nearly constant: tabulated
     down = Rate(lambda w: -2.0 - 1e-9 * w * w, -20.0, 20.0)
     assert up.const is None
-    t, up_first, first = profile(50.0, 0.0, 0.0, up, down)
+    found = profile(50.0, 0.0, 0.0, up, down)
+    t, up_first, first = found.time, found.up, found.first
     assert t == pytest.approx(10.0, rel=1e-3) and up_first and first == pytest.approx(5.0, 1e-3)
     # drag c = 0.02 at a = 1: terminal speed 1/sqrt(0.02) = 7.07; the level holds it
     drag = Rate(lambda w: 1.0 - 0.02 * w * w if w > 0 else 1.0, -20.0, 20.0)

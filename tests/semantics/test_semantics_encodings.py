@@ -69,8 +69,8 @@ def test_uacm_quadratic_fall_and_exact_event_cascade() -> None:
     # acceleration 2: from t = 0 gravity acts on L2 and L3 (flags set in the initial state,
     # speeds from 0). L2 z = 90 - t^2, L3 z = 120 - 2 t^2 (its own fall plus L2's). L3 reaches
     # 0 at sqrt(60): its gravity stops (its angle set to 0), but L2's keeps carrying it down:
-    # -(t^2 - 60) reaches -1 (the margin) at sqrt(61), where L3 wraps to 359 and, above 181,
-    # starts falling the other way from speed 0.
+    # -(t^2 - 60) reaches -0.2 (the wrap margin) at sqrt(60.2), where L3 wraps to 359.8 and,
+    # above 181 (the hysteresis), starts falling the other way from speed 0.
     domain, problem = _encoded("uacm", "(> (angle L2 z-axis) 80.5)", acceleration=2.0)
     task = load_task(domain, problem)
     report = validate(task, parse_plan("3.0: (observe)\n"))
@@ -80,8 +80,8 @@ def test_uacm_quadratic_fall_and_exact_event_cascade() -> None:
     assert traj.value("angle(L2,z-axis)", 3.0) == pytest.approx(81.0, abs=1e-9)
     assert traj.value("angle(L3,z-axis)", 3.0) == pytest.approx(102.0, abs=1e-9)
 
-    long = validate(task, parse_plan("7.9: (observe)\n"))
-    t1, t2 = math.sqrt(60.0), math.sqrt(61.0)
+    long = validate(task, parse_plan("7.8: (observe)\n"))
+    t1, t2 = math.sqrt(60.0), math.sqrt(60.2)
     fired = [(e.name, e.args[0], e.time) for e in long.events if e.args[0] == "L3"]
     assert [(n, a) for n, a, _ in fired] == [
         ("stop-gravity-decrease", "L3"),
@@ -90,8 +90,8 @@ def test_uacm_quadratic_fall_and_exact_event_cascade() -> None:
     ]
     assert [t for *_, t in fired] == pytest.approx([t1, t2, t2], abs=1e-9)
     assert abs(fired[0][2] - t1) < 1e-9 and abs(fired[1][2] - t2) < 1e-9
-    t = 7.9
-    expected = 359.0 + (t - t2) ** 2 - (t**2 - t2**2)
+    t = 7.8
+    expected = 359.8 + (t - t2) ** 2 - (t**2 - t2**2)
     assert long.trajectory is not None
     assert long.trajectory.value("angle(L3,z-axis)", t) == pytest.approx(expected, abs=1e-9)
 

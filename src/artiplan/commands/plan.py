@@ -12,13 +12,15 @@ marked by a first comment line, and the exit code is 4 with the reason on stderr
 from __future__ import annotations
 
 import argparse
-import resource
 import sys
 from collections.abc import Mapping
 from pathlib import Path
-from typing import Any
 
 from artiplan.errors import ExitCode, UsageError
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 PLANNERS = ("artiplan", "enhsp", "kairos")
 
@@ -51,6 +53,8 @@ def _check(args: argparse.Namespace) -> None:
 
 def _cap_address_space(limit_mb: float) -> None:
     """Hard stop for runaway memory: the current address space plus the limit (plus slack)."""
+    import resource  # here: only with --memory-limit
+
     try:
         with open("/proc/self/status") as fh:
             vm = next(int(line.split()[1]) for line in fh if line.startswith("VmSize:"))
@@ -89,6 +93,11 @@ def run(args: argparse.Namespace) -> int:
     if margins and not margins.get("ok", True):
         print(f"artiplan plan: warning: small margin: {margins.get('note')} (validators may "
               "disagree on this plan)", file=sys.stderr)
+    if margins and margins.get("coincident"):
+        times = ", ".join(f"{t:g}" for t in margins["coincident"][:3])
+        print(f"artiplan plan: warning: two objects' events coincide at t = {times} s (stock "
+              "VAL often rejects such an instant: benchmarks/results/semantics.md)",
+              file=sys.stderr)
     if result.stats.get("initial_events"):
         print("artiplan plan: warning: events are enabled in the initial state ("
               + ", ".join(result.stats["initial_events"][:3]) + "): they fire at time 0, but "

@@ -211,7 +211,7 @@ def _gravity(options: EncodingOptions, sign: str) -> str:
     g = options.gravity_plane
     flag = f"{sign}ing-angle-gravity".replace("eing", "ing")
     other = "increasing-angle-gravity" if sign == "decrease" else "decreasing-angle-gravity"
-    m = fmt_number(options.margin)
+    m = fmt_number(options.hysteresis)
     uacm = options.model == "uacm"
     rate = "(gravity-speed ?l)" if uacm else "(speed-g)"
     rate1 = rate.replace("?l)", "?l1)")
@@ -220,7 +220,7 @@ def _gravity(options: EncodingOptions, sign: str) -> str:
                        f"(affects ?l1 ?l2)\n      ({flag} ?l1)\n      {_feels('?l1')}", sign, rate1)
     rest = ""
     if sign == "decrease":
-        below = fmt_number(180 - options.margin)
+        below = fmt_number(180 - options.hysteresis)
         start_range = f"(> (angle ?l {g}) {m})\n      (< (angle ?l {g}) {below})"
         stop_range = f"(<= (angle ?l {g}) 0)"
         # At rest the angle is set to exactly 0 (its value at the event's root): links that
@@ -229,7 +229,7 @@ def _gravity(options: EncodingOptions, sign: str) -> str:
         rest = f"\n      (assign (angle ?l {g}) 0)"
     else:
         # The upper end needs no test: at 360 back-to-zero wraps the angle to exactly 0.
-        start_range = f"(> (angle ?l {g}) {fmt_number(180 + options.margin)})"
+        start_range = f"(> (angle ?l {g}) {fmt_number(180 + options.hysteresis)})"
         stop_range = f"(<= (angle ?l {g}) 180)"
     return f"""
   ;; DEPARTURE (VAL): events with Boolean flags record which way gravity would turn ?l

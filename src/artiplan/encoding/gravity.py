@@ -33,7 +33,7 @@ def gravity_links(obj: ArticulatedObject, held: Iterable[str] = ()) -> tuple[str
 def initial_gravity(gamma: float, margin: float) -> str | None:
     """Which way gravity turns a free link whose vertical angle is ``gamma`` [deg, in
     [0, 360)] at the start: ``"decreasing"``, ``"increasing"`` or None (at rest, or within the
-    hysteresis ``margin`` [deg] of 0 or 180: ``EncodingOptions.margin``).
+    hysteresis ``margin`` [deg] of 0 or 180: ``EncodingOptions.hysteresis``).
 
     The rule is the ``start-gravity-*`` events' preconditions read as VAL reads them (slack
     ``VAL_SLACK``): a link that VAL would see start falling starts with its flag set.

@@ -10,7 +10,7 @@ from artiplan.tolerances import VAL_EVENT_WINDOW
 
 #: Smallest wrap-around and hysteresis margin [deg]: 100 times VAL's comparison slack.
 MIN_MARGIN = 0.01
-#: Link speed [deg/s] the margins of the gravity models are sized for. A link carried by
+#: Link speed [deg/s] the gravity flags' hysteresis is sized for. A link carried by
 #: falling links base-ward of it turns at the sum of their speeds, far above the robot's: up to
 #: 80 deg/s measured on 30-link UACM chains (benchmarks/results/semantics.md).
 GRAVITY_LINK_SPEED = 50.0
@@ -93,20 +93,28 @@ class EncodingOptions:
 
     @property
     def margin(self) -> float:
-        """Margin [deg] of the wrap-around (angles live in [-margin, 360)) and of the gravity
-        flags' hysteresis (a link within it of 0 or 180 does not start to fall).
+        """Margin [deg] of the wrap-around: angles live in [-margin, 360).
 
-        Two events of one motion (180 passed, then 180 + margin; 0 passed, then -margin) must
-        be more than VAL's event window apart in time, or VAL merges them into one happening
-        and reports an event triggered twice: twice the window at the fastest link speed, and
-        at least :data:`MIN_MARGIN`. Without gravity that is the robot's speed (0.2 deg at the
-        default 10 deg/s); with gravity, links carried by falling links move faster: at least
-        :data:`GRAVITY_LINK_SPEED` (1 deg).
+        A wrap and the event of the same motion before it (0 passed, then -margin) must be
+        more than VAL's event window apart in time, or VAL merges them into one happening:
+        twice the window at the fastest robot speed, and at least :data:`MIN_MARGIN` (0.2 deg
+        at the default 10 deg/s).
         """
         fastest = max(self.speed_i, self.speed_d)
-        if self.has_gravity:
-            fastest = max(fastest, GRAVITY_LINK_SPEED)
         return max(MIN_MARGIN, round(2.0 * VAL_EVENT_WINDOW * fastest, 6))
+
+    @property
+    def hysteresis(self) -> float:
+        """Hysteresis [deg] of the gravity flags: a link within it of 0 or 180 does not
+        start to fall.
+
+        A stop and the next start of one link's flags (0 passed, then +hysteresis) must be
+        more than VAL's event window apart, or VAL fires both at one happening and reports an
+        event triggered twice. A link carried by falling links turns at the sum of their
+        speeds, far above the robot's: twice the window at :data:`GRAVITY_LINK_SPEED` at least
+        (1 deg), and never below :attr:`margin`.
+        """
+        return max(self.margin, round(2.0 * VAL_EVENT_WINDOW * GRAVITY_LINK_SPEED, 6))
 
     @property
     def azimuth_plane(self) -> str | None:

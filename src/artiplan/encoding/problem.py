@@ -57,7 +57,7 @@ def _gravity_flags(
     out = []
     for lk in obj.links[1:]:
         angle = float(fmt_number(wrap_deg(init.angle(obj.index(lk), options.gravity_plane))))
-        side = initial_gravity(angle, options.margin)
+        side = initial_gravity(angle, options.hysteresis)
         if side is not None:
             out.append(f"({side}-angle-gravity {lk})")
     return out

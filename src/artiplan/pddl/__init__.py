@@ -12,7 +12,8 @@ Errors are :class:`artiplan.errors.InputError` with file:line:col (exit code 3).
 from __future__ import annotations
 
 import importlib
-from typing import TYPE_CHECKING, Any
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
 
 #: Public name -> the module defining it; imported on first use, so that importing one
 #: module of the package (the task, say) does not import the parser and the writer too.
@@ -38,6 +39,8 @@ __all__ = [
 ]
 
 if TYPE_CHECKING:
+    from typing import Any
+
     from artiplan.pddl.checker import check_problem
     from artiplan.pddl.grounding import ground
     from artiplan.pddl.loader import load_domain, load_problem, load_task

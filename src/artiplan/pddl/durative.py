@@ -24,12 +24,10 @@ says the duration it ran. Plans name the durative action: ``t: (N args) [d]``
 
 from __future__ import annotations
 
-from dataclasses import replace
-from typing import cast
-
 from artiplan.errors import InputError
 from artiplan.pddl import grammar as g
 from artiplan.pddl import syntax as s
+from artiplan.records import replace
 
 #: Half-width [s] of a fixed duration's window for the end (1.5 grid steps of 1e-6 s).
 END_SLACK = 1.5e-6
@@ -98,7 +96,7 @@ class _Parts:
             raise InputError(f"a condition of durative action '{self.op.name}' needs a time",
                              f.loc, expected="(at start c), (at end c) or (over all c)",
                              found="an untimed condition")
-        body = cast(s.Formula, f.body)
+        body: s.Formula = f.body  # type: ignore[assignment]  # a condition's body
         {"at start": self.start_pre, "at end": self.end_pre, "over all": self.overall}[
             f.when].append(body)
 
@@ -107,7 +105,7 @@ class _Parts:
             if e.when == "over all":
                 raise InputError("an effect cannot be 'over all'", e.loc,
                                  expected="(at start e) or (at end e)", found="(over all ...)")
-            body = cast(s.EffectNode, e.body)
+            body: s.EffectNode = e.body  # type: ignore[assignment]  # an effect's body
             (self.start_eff if e.when == "at start" else self.end_eff).append(body)
         elif isinstance(e, s.NumericAssignment) and _mentions(e.expr, g.TIME_SYMBOL):
             self.continuous.append(e)

@@ -11,7 +11,6 @@ parameter over every object of its type) that did not make it into the task.
 from __future__ import annotations
 
 import time
-from dataclasses import replace
 
 from artiplan.errors import InputError
 from artiplan.pddl import syntax as s
@@ -31,6 +30,7 @@ from artiplan.pddl.renumber import (
 )
 from artiplan.pddl.simplify import make_and
 from artiplan.pddl.types import TypeHierarchy, objects_by_type
+from artiplan.records import replace
 
 
 def changed_symbols(domain: s.Domain) -> tuple[set[str], set[str]]:

@@ -7,14 +7,13 @@ expanded over the typed objects and ``imply`` becomes ``or``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-
 from artiplan.errors import InputError
 from artiplan.pddl import grammar as g
 from artiplan.pddl import syntax as s
 from artiplan.pddl import task as t
 from artiplan.pddl.renumber import fluents_in_num
 from artiplan.pddl.simplify import make_and, make_arith, make_compare, make_not, make_or
+from artiplan.records import dataclass, field
 
 Binding = dict[str, str]
 Key = tuple[str, ...]

@@ -9,9 +9,9 @@ with a warning.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 
 from artiplan.errors import InputError, SourceLocation
+from artiplan.records import dataclass
 
 _TOKEN = re.compile(r"\s+|;[^\n]*|\(|\)|[^\s();]+")
 _NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")

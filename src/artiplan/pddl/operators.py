@@ -10,7 +10,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass
 
 from artiplan.pddl import syntax as s
 from artiplan.pddl import task as t
@@ -21,6 +20,7 @@ from artiplan.pddl.instantiate import (
     ground_condition,
     ground_effect,
 )
+from artiplan.records import dataclass
 
 Check = Callable[[Binding], bool]
 

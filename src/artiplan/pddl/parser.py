@@ -7,9 +7,6 @@ constants, variables; arities); ``parse_problem`` checks syntax only, and
 
 from __future__ import annotations
 
-from dataclasses import replace
-from typing import cast
-
 from artiplan.errors import InputError
 from artiplan.pddl import grammar as g
 from artiplan.pddl import syntax as s
@@ -27,6 +24,7 @@ from artiplan.pddl.formulas import (
     read_typed_list,
 )
 from artiplan.pddl.lexer import SExpr, SList, Token, is_number, read_sexpr
+from artiplan.records import replace
 
 
 def parse_domain(text: str, filename: str = "<domain>") -> s.Domain:
@@ -80,7 +78,7 @@ def parse_problem(text: str, filename: str = "<problem>") -> s.Problem:
     init: tuple[s.InitElement, ...] = ()
     warnings: list[str] = quirks
     if ":init" in fields:
-        found = cast(tuple[tuple[s.InitElement, ...], list[str]], fields[":init"])
+        found: tuple[tuple[s.InitElement, ...], list[str]] = fields[":init"]  # type: ignore[assignment]
         init, warnings = found[0], [*quirks, *found[1]]
     return s.Problem(
         name=name,

@@ -4,10 +4,10 @@ out constant (never reachable: ``FALSE``; true initially and never deleted: ``TR
 from __future__ import annotations
 
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
 
 from artiplan.pddl import task as t
 from artiplan.pddl.simplify import make_and, make_not, make_or
+from artiplan.records import dataclass
 
 
 @dataclass(frozen=True)

@@ -7,12 +7,11 @@ process) are returned as warning strings ``file:line:col: text``.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from artiplan.errors import InputError, SourceLocation
 from artiplan.pddl import grammar as g
 from artiplan.pddl import syntax as s
 from artiplan.pddl.types import TypeHierarchy
+from artiplan.records import dataclass
 
 
 @dataclass(frozen=True)

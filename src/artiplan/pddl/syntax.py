@@ -8,10 +8,12 @@ excluded from equality, so ``parse(write(tree)) == tree`` holds.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import Literal
-
 from artiplan.errors import SourceLocation
+from artiplan.records import dataclass, field
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Literal
 
 
 def _loc() -> SourceLocation | None:
@@ -258,7 +260,8 @@ class FunctionDecl:
     loc: SourceLocation | None = _loc()
 
 
-OperatorKind = Literal["action", "process", "event", "durative-action", "constraint"]
+if TYPE_CHECKING:
+    OperatorKind = Literal["action", "process", "event", "durative-action", "constraint"]
 
 
 @dataclass(frozen=True)

@@ -14,8 +14,11 @@ extend it by adding fields with defaults, never by renaming.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
-from typing import Literal
+from artiplan.records import dataclass, field
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Literal
 
 # --------------------------------------------------------------------------- numeric expressions
 
@@ -77,7 +80,8 @@ class Or:
     parts: tuple[Condition, ...]
 
 
-ComparisonOp = Literal["<", "<=", ">", ">=", "="]
+if TYPE_CHECKING:
+    ComparisonOp = Literal["<", "<=", ">", ">=", "="]
 
 
 @dataclass(frozen=True)
@@ -103,7 +107,8 @@ Condition = Atom | Not | And | Or | Comparison | Truth
 
 # -------------------------------------------------------------------------------------- effects
 
-NumericOp = Literal["assign", "increase", "decrease", "scale-up", "scale-down"]
+if TYPE_CHECKING:
+    NumericOp = Literal["assign", "increase", "decrease", "scale-up", "scale-down"]
 
 
 @dataclass(frozen=True)

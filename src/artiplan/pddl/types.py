@@ -2,11 +2,10 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from artiplan.errors import InputError
 from artiplan.pddl import grammar as g
 from artiplan.pddl import syntax as s
+from artiplan.records import dataclass
 
 
 @dataclass(frozen=True)

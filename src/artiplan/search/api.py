@@ -12,29 +12,28 @@ A plan the validator rejects is never returned as solved: the search goes on (co
 
 from __future__ import annotations
 
-import dataclasses
 import time
 from collections.abc import Callable, Iterator
-from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
 
 from artiplan.errors import InvalidPlanError, UsageError
 from artiplan.pddl.task import Task
+from artiplan.records import dataclass, names, replace
 from artiplan.search.engine import Apply, Search, SearchConfig, SearchOutcome, initial_node
 from artiplan.search.heuristic import Heuristic, HeuristicConfig, RateHeuristic
 from artiplan.search.improve import improve
 from artiplan.search.limits import LimitReached, Limits
-from artiplan.search.motion import find_controls, find_motions
-from artiplan.search.numeric import NumericHeuristic
 from artiplan.search.proofs import prove_unsolvable
-from artiplan.search.timing import Repair, repair_times
 from artiplan.semantics.compiled import CompiledTask, compile_task
 from artiplan.semantics.kernel import Kernel
 from artiplan.semantics.plan import Plan, TimedAction, TimedEvent, fold_durative
 from artiplan.semantics.results import PlanResult, PlanStats, PlanStatus, margins_of
 from artiplan.semantics.validator import ValidationReport, enabled_initial_events, validate
 from artiplan.tolerances import VAL_EVENT_WINDOW, VAL_TIME_TOLERANCE
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 __all__ = ["OPTIONS", "PlanResult", "PlanStats", "PlanStatus", "PlannerConfig", "plan",
            "plan_task"]
@@ -58,6 +57,8 @@ class PlannerConfig:
         value_precision: Decimals of values in duplicate detection.
         validate: Check every plan with the validator before returning it.
         improve: Search on for a better plan within an expansion budget.
+        separate: Shift the plan's tail by a few ms where its timing makes two objects cross
+            a boundary at one instant, which stock VAL mis-handles (:mod:`separate`).
         heuristic: Builds the search's heuristic (another one plugs in here).
     """
 
@@ -68,6 +69,7 @@ class PlannerConfig:
     value_precision: int = 6
     validate: bool = True
     improve: bool = True
+    separate: bool = True
     heuristic: HeuristicFactory = RateHeuristic
 
     @classmethod
@@ -89,8 +91,8 @@ class PlannerConfig:
 
 
 #: The planner's keyword options (name -> the field's type), for scripts and front ends.
-OPTIONS: dict[str, type] = {f.name: type(f.default) for f in dataclasses.fields(PlannerConfig)
-                            if f.name != "heuristic"}
+OPTIONS: dict[str, type] = {name: type(getattr(PlannerConfig, name))
+                            for name in names(PlannerConfig) if name != "heuristic"}
 
 #: ``on_progress(elapsed [s], statistics so far)``: called every 2 s of a long planning call.
 Progress = Callable[[float, PlanStats], None]
@@ -127,6 +129,8 @@ FIRST = (Attempt(False, None, 2.0, 20), Attempt(False, None, 5.0, 40),
 #: Free-wait steps [s] of the rounds after ``FIRST`` (each round doubles the budgets); the
 #: finest one is searched without a budget.
 DELTAS = (1.0, 0.5, 0.25, 0.1, 0.05)
+#: Most seconds the separation of coincident crossings may take (see PlannerConfig.separate).
+SEPARATE_S = 10.0
 
 
 def schedule(numeric_first: bool = False) -> Iterator[Attempt]:
@@ -183,7 +187,7 @@ def plan_task(
     chains); ``on_progress`` is called about every 2 s with the counters so far.
     """
     if config is None or options:
-        config = dataclasses.replace(config, **options) if config else PlannerConfig.of(**options)
+        config = replace(config, **options) if config else PlannerConfig.of(**options)
     run = _Planning(task, config, time_limit, memory_limit, on_progress)
     t0 = time.perf_counter()
     try:
@@ -216,7 +220,7 @@ class _Planning:
 
     def _report(self, elapsed: float) -> None:
         assert self.on_progress is not None
-        now = dataclasses.replace(self.stats)
+        now = replace(self.stats)
         if self.running is not None:
             now.add(self.running.stats)
         self.on_progress(elapsed, now)
@@ -235,6 +239,8 @@ class _Planning:
                               "plan (not a proof: waits stop only at critical times)")
         if self.config.improve:
             self._improve()
+        if self.config.validate and self.config.separate:
+            self._separate()
         found, report = self.best
         stats = self.stats
         stats.plan_length, stats.makespan = len(found.actions), found.makespan
@@ -251,6 +257,8 @@ class _Planning:
         outcome: SearchOutcome | None = None
         exhausted: set[tuple[bool, float | None]] = set()
         try:
+            from artiplan.search.motion import find_controls, find_motions
+
             second_order = bool(find_motions(self.task, find_controls(self.task)))
             for n, attempt in enumerate(schedule(second_order), 1):
                 kind = (attempt.numeric, attempt.delta)
@@ -293,13 +301,17 @@ class _Planning:
         hc = HeuristicConfig(time_weight=weight, damage_cost=attempt.damage)
         if not attempt.numeric:
             return config.heuristic(self.ct, hc, self.kernel.active), config.search()
+        from artiplan.search.numeric import NumericHeuristic  # here: general domains only
+
         heur = NumericHeuristic(self.ct, hc, self.kernel.active)
-        return heur, dataclasses.replace(config.search(), delta=attempt.delta,
+        return heur, replace(config.search(), delta=attempt.delta,
                                          before_events=True, g_weight=1.0)
 
     def _repair(self, actions: list[int], times: list[float]) -> bool:
         """A timing repair of a skeleton (:mod:`artiplan.search.timing`); True when the
         repaired plan is valid (it becomes the best plan)."""
+        from artiplan.search.timing import Repair, repair_times  # here: general domains only
+
         t = time.perf_counter()
         settings = Repair(epsilon=self.config.epsilon, event_gap=self.config.event_gap)
         evals: list[int] = []
@@ -320,7 +332,7 @@ class _Planning:
             return True
         report = self._validate(found)
         if report.valid:
-            found = dataclasses.replace(found, events=tuple(report.events))
+            found = replace(found, events=tuple(report.events))
             self.best = (found, report)
             return True
         self.stats.rejected_reasons.append(report.reason)
@@ -349,6 +361,29 @@ class _Planning:
         self.stats.validate_s += time.perf_counter() - t
         return report
 
+    def _separate(self) -> None:
+        """Pull apart crossings the plan's timing makes coincide, within at most half the time
+        left (and :data:`SEPARATE_S` without a limit); the plan stays if none helps."""
+        from artiplan.search.separate import separate
+
+        assert self.best is not None
+        found, report = self.best
+        if report is None:
+            return
+        remaining = self.limits.remaining()
+        budget = SEPARATE_S if remaining is None else min(SEPARATE_S, 0.5 * remaining)
+        stop = time.monotonic() + budget
+        t = time.perf_counter()
+        try:
+            better = separate(self.task, found, report, self.config.event_gap, self._validate,
+                              lambda: time.monotonic() > stop)
+        except LimitReached:
+            better = None
+        self.stats.separate_s = time.perf_counter() - t
+        if better is not None:
+            self.best = better
+            self.stats.separated = True
+
     def _improve(self) -> None:
         """The anytime phase (:mod:`artiplan.search.improve`): a better validated plan."""
         assert self.best is not None
@@ -368,7 +403,7 @@ class _Planning:
         winner = self.winner
 
         def heuristic(ct: CompiledTask, hc: HeuristicConfig, active: Any) -> Heuristic:
-            return self._attempt(dataclasses.replace(winner, damage=hc.damage_cost),
+            return self._attempt(replace(winner, damage=hc.damage_cost),
                                  hc.time_weight)[0]
 
         best, report = improve(self.ct, self.kernel, self._attempt(winner)[1], self.limits,

@@ -25,10 +25,10 @@ import heapq
 import itertools
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
 
 from artiplan.errors import InvalidPlanError
 from artiplan.pddl.task import Atom
+from artiplan.records import dataclass, field
 from artiplan.search.heuristic import Evaluation, Heuristic
 from artiplan.search.waits import Waits, ceil_grid, grid_after
 from artiplan.semantics.compiled import CompiledTask, Operator

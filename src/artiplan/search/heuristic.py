@@ -20,10 +20,9 @@ import heapq
 import math
 import time
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
-from typing import Protocol
 
 from artiplan.pddl.task import And, Atom, Condition, Not
+from artiplan.records import dataclass
 from artiplan.search.intervals import (
     Intervals,
     Jump,
@@ -69,9 +68,16 @@ class GoalGroup:
     literal: int | None = None
 
 
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Protocol
+else:
+    Protocol = object  # at run time a plain class: nothing checks the protocol there
+
+
 class Heuristic(Protocol):
     """What the search asks of a heuristic (another one plugs in through
-    ``PlannerConfig.heuristic``, as in pyperplan)."""
+    ``PlannerConfig.heuristic``, as in pyperplan): a protocol for type checkers."""
 
     #: The goal's groups; the search's group waits (``WaitGroup``) refer to them by index.
     groups: list[GoalGroup]

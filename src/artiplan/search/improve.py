@@ -12,9 +12,9 @@ validator accepts is returned; if none is accepted, the first plan stays.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
 
 from artiplan.errors import InvalidPlanError
+from artiplan.records import dataclass
 from artiplan.search.engine import (
     WAIT_GOAL,
     Node,

@@ -8,9 +8,9 @@ a jump. Open and closed ends are not told apart: a relaxation needs distances, n
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 from artiplan.pddl.task import And, BinOp, Comparison, Condition, Not, Or, Truth
+from artiplan.records import dataclass
 from artiplan.semantics.walks import linear
 
 Intervals = tuple[tuple[float, float], ...]

@@ -10,7 +10,8 @@ from __future__ import annotations
 import os
 import time
 from collections.abc import Callable
-from dataclasses import dataclass, field
+
+from artiplan.records import dataclass, field
 
 
 class LimitReached(Exception):

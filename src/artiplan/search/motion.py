@@ -26,7 +26,6 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
 
 from artiplan.pddl.task import (
     Atom,
@@ -37,6 +36,7 @@ from artiplan.pddl.task import (
     NumExpr,
     Task,
 )
+from artiplan.records import dataclass, field
 from artiplan.search.profile import Profile, Rate, box_profile
 from artiplan.semantics.compiled import written_fluents
 from artiplan.semantics.walks import conjuncts, fluents_of, linear

@@ -32,8 +32,6 @@ import heapq
 import math
 import time
 from collections.abc import Callable
-from dataclasses import dataclass
-from typing import Literal
 
 from artiplan.pddl.task import (
     Atom,
@@ -46,11 +44,22 @@ from artiplan.pddl.task import (
     NumExpr,
     Truth,
 )
+from artiplan.records import dataclass
 from artiplan.search.heuristic import Evaluation, GoalGroup, HeuristicConfig, propagate
 from artiplan.search.motion import MotionGoal
 from artiplan.search.secondorder import Corner, SecondOrder, Steering, applicable
 from artiplan.semantics.compiled import CompiledTask, compile_condition
-from artiplan.semantics.walks import SOURCE_GLOBALS, conjuncts, expr_source, fluents_of, linear
+from artiplan.semantics.walks import (
+    conjuncts,
+    expr_source,
+    fluents_of,
+    linear,
+    source_function,
+)
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Literal
 
 Values = tuple[float, ...]
 PFn = Callable[[Values], float]
@@ -62,8 +71,7 @@ MAX_REPEATS = 1000
 
 
 def _compile_expr(expr: NumExpr) -> PFn:
-    fn: Callable[[Values], float] = eval(  # noqa: S307 - source generated from the task
-        f"lambda V: {expr_source(expr)}", dict(SOURCE_GLOBALS))
+    fn: Callable[[Values], float] = source_function(f"lambda V: {expr_source(expr)}")
 
     def safe(values: Values) -> float:
         try:

@@ -16,7 +16,8 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from typing import NamedTuple
+
+from artiplan.records import dataclass
 
 #: Accelerations below this [1/s^2] count as none (the speed can only cruise).
 FLOOR = 1e-9
@@ -24,7 +25,8 @@ FLOOR = 1e-9
 CELLS = 128
 
 
-class Profile(NamedTuple):
+@dataclass(frozen=True, slots=True)
+class Profile:
     """A bang-bang profile: its time [s], whether it accelerates first, and how long [s] its
     first phase lasts (until the control must change: the switch, or the start of a cruise
     at a cap the control does not hold by itself)."""

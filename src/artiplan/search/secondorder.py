@@ -20,9 +20,9 @@ from __future__ import annotations
 import itertools
 import math
 from collections.abc import Callable
-from dataclasses import dataclass, field
 
 from artiplan.pddl.task import Comparison, Condition, Task
+from artiplan.records import dataclass, field
 from artiplan.search.motion import (
     MotionGoal,
     find_controls,

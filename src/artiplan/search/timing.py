@@ -19,10 +19,10 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 
 from artiplan.errors import InvalidPlanError
 from artiplan.pddl.task import Condition
+from artiplan.records import dataclass
 from artiplan.semantics.compiled import CompiledTask
 from artiplan.semantics.kernel import EventLog, Kernel
 from artiplan.semantics.walks import conjuncts, robustness

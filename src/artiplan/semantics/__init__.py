@@ -11,7 +11,8 @@ polynomial flows and the numeric fallback), ``kernel`` (instants and the passing
 from __future__ import annotations
 
 import importlib
-from typing import TYPE_CHECKING, Any
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
 
 #: Public name -> the module defining it, imported on first use (importing one kernel module
 #: does not import the validator, the trajectory and the plan files too).
@@ -50,6 +51,8 @@ __all__ = [
 ]
 
 if TYPE_CHECKING:
+    from typing import Any
+
     from artiplan.semantics.compiled import CompiledTask, compile_task
     from artiplan.semantics.interference import interferes
     from artiplan.semantics.kernel import EventError, Kernel, Segment, ZenoError

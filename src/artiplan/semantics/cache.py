@@ -4,11 +4,14 @@ from __future__ import annotations
 
 import weakref
 from collections.abc import Callable
-from typing import Any, TypeVar
 
 from artiplan.pddl.task import Task
 
-T = TypeVar("T")
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Any, TypeVar
+
+    T = TypeVar("T")
 
 # Not a setting: a memo keyed by the task's identity, holding only a weak reference to it.
 _MEMO: dict[tuple[int, Any], tuple[weakref.ref[Task], Any]] = {}

@@ -14,7 +14,6 @@ Compiling costs a few milliseconds per hundred operators and happens once per ta
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
 
 from artiplan.pddl.task import (
     And,
@@ -29,9 +28,9 @@ from artiplan.pddl.task import (
 )
 from artiplan.pddl.task import Atom as _Atom
 from artiplan.pddl.task import Comparison as _Comparison
+from artiplan.records import dataclass, field
 from artiplan.semantics.cache import per_task
 from artiplan.semantics.walks import (
-    SOURCE_GLOBALS,
     Linear,
     comparison_source,
     condition_parts,
@@ -39,8 +38,14 @@ from artiplan.semantics.walks import (
     expr_source,
     fluents_of,
     linear,
+    source_definitions,
+    source_function,
 )
 from artiplan.tolerances import VAL, Tolerances
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 CondFn = Callable[[int, tuple[float, ...]], bool]
 EffectFn = Callable[[int, tuple[float, ...]], tuple[int, tuple[float, ...]]]
@@ -107,7 +112,7 @@ def compile_condition(
         return comparison_source(c, tol)
 
     src = condition_source(cond, comparison)
-    fn: CondFn = eval(f"lambda F, V: {src}", dict(SOURCE_GLOBALS))  # noqa: S307 - source generated from the task
+    fn: CondFn = source_function(f"lambda F, V: {src}")
     return fn, frozenset(used)
 
 
@@ -148,10 +153,10 @@ def _effect_lines(eff: Effect, indent: str, cond_src: Callable[[Condition], str]
         _effect_lines(ce.effect, indent + "    ", cond_src, lines, parts)
 
 
-def compile_effect(eff: Effect, comps: ComparisonTable, tol: Tolerances) -> tuple[EffectFn,
-                                                                                     PartsFn]:
-    """``eff`` as ``(F, V) -> (F2, V2)`` and as its parts (see :data:`PartsFn`); conditions
-    of conditional effects read with ``tol`` in the state before the happening."""
+def effect_sources(eff: Effect, comps: ComparisonTable, tol: Tolerances) -> tuple[str, str]:
+    """Sources of ``eff`` as ``_eff(F, V) -> (F2, V2)`` and as its parts ``_parts`` (see
+    :data:`PartsFn`); conditions of conditional effects read with ``tol`` in the state
+    before the happening (their comparisons are entered in ``comps`` now)."""
     def cond_src(c: Condition) -> str:
         return condition_source(c, lambda comp: (comps.add(comp), comparison_source(comp, tol))[1])
 
@@ -161,9 +166,22 @@ def compile_effect(eff: Effect, comps: ComparisonTable, tol: Tolerances) -> tupl
     split = ["def _parts(F, V):", "    add = 0", "    dele = 0", "    U = []"]
     _effect_lines(eff, "    ", cond_src, split, parts=True)
     split.append("    return add, dele, U")
-    namespace: dict[str, object] = dict(SOURCE_GLOBALS)
-    exec("\n".join(apply + split), namespace)  # noqa: S102 - source generated from the task
-    return namespace["_eff"], namespace["_parts"]  # type: ignore[return-value]
+    return "\n".join(apply), "\n".join(split)
+
+
+def _compile_on_first_call(op: Operator, field_name: str, source: str, name: str) -> None:
+    """Set ``op.<field_name>`` to a stub that compiles the function ``name`` of ``source``
+    when first called and puts it in its place: a search applies about half of a task's
+    operators, and parallel effects (``parts``) rarely, so most effects are never compiled."""
+    done: list[Callable[..., Any]] = []
+
+    def first(*args: Any) -> Any:
+        if not done:
+            done.append(source_definitions(source)[name])
+            object.__setattr__(op, field_name, done[0])
+        return done[0](*args)
+
+    object.__setattr__(op, field_name, first)
 
 
 def is_noop(action: GroundAction) -> bool:
@@ -264,10 +282,17 @@ def _operator(i: int, op: GroundAction, comps: ComparisonTable, tol: Tolerances,
               strict: bool = False) -> Operator:
     pre, used = compile_condition(op.precondition, comps, tol, snap=strict)
     req, forb = fact_literals(op.precondition) or (0, 0)
-    effect, parts = compile_effect(op.effect, comps, tol)
-    return Operator(i, op.signature, op.name, op.args, pre, used, req, forb, effect, parts,
-                    is_noop(op), op, frozenset(written_fluents(op.effect)),
-                    frozenset(constant_assigns(op.effect)))
+    apply, split = effect_sources(op.effect, comps, tol)
+    out = Operator(i, op.signature, op.name, op.args, pre, used, req, forb, _unset, _unset,
+                   is_noop(op), op, frozenset(written_fluents(op.effect)),
+                   frozenset(constant_assigns(op.effect)))
+    _compile_on_first_call(out, "effect", apply, "_eff")
+    _compile_on_first_call(out, "parts", split, "_parts")
+    return out
+
+
+def _unset(facts: int, values: tuple[float, ...]) -> Any:
+    raise AssertionError("replaced by _compile_on_first_call")
 
 
 def compile_task(task: Task, tol: Tolerances = VAL, strict: bool = False) -> CompiledTask:

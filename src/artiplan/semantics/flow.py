@@ -21,18 +21,18 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 
 from artiplan.pddl.task import BinOp, Const, FluentRef, NumExpr
+from artiplan.records import dataclass
 from artiplan.semantics import polynomial as P
 from artiplan.semantics.compiled import Comparison, Process
 from artiplan.semantics.walks import (
-    SOURCE_GLOBALS,
     Box,
     DomainError,
     evaluate,
     expr_source,
     interval,
+    source_function,
     to_poly,
 )
 from artiplan.tolerances import Tolerances
@@ -232,8 +232,8 @@ class NumericFlow(Flow):
         for f, e in shape.raw:
             terms[f].append(expr_source(e))
         body = ", ".join(f"({f}, {' + '.join(t)})" for f, t in sorted(terms.items()))
-        self._deriv: Callable[[Sequence[float]], list[tuple[int, float]]] = eval(
-            f"lambda V: [{body}]", dict(SOURCE_GLOBALS))  # noqa: S307 - source generated from the task
+        self._deriv: Callable[[Sequence[float]], list[tuple[int, float]]] = source_function(
+            f"lambda V: [{body}]")
         self._shape = shape
         self._times: list[float] = [0.0]
         self._states: list[Values] = [start]

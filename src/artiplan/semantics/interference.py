@@ -2,9 +2,8 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 from artiplan.pddl.task import Effect, GroundAction
+from artiplan.records import dataclass
 from artiplan.semantics.walks import condition_parts, fluents_of
 
 

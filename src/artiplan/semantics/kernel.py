@@ -25,15 +25,18 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
-from typing import Any
 
 from artiplan.errors import InvalidPlanError
 from artiplan.pddl.task import Condition, GroundAction, Task
+from artiplan.records import dataclass, field
 from artiplan.semantics import polynomial as P
 from artiplan.semantics.compiled import Comparison, CompiledTask, Operator
 from artiplan.semantics.flow import DT_MIN, STILL, Flow, NumericFlow, Shape, make_flow, shape_of
 from artiplan.semantics.walks import evaluate, truth
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 Values = tuple[float, ...]
 #: ``(time [s], event index)`` in firing order.

@@ -6,7 +6,7 @@ A contract shared by ``semantics`` (reading, writing, validating), ``search`` an
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, replace
+from artiplan.records import dataclass, field, replace
 
 
 @dataclass(frozen=True)

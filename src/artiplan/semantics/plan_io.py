@@ -17,6 +17,7 @@ Times are written with up to 6 decimals (trailing zeros dropped, at least one de
 
 from __future__ import annotations
 
+import functools
 import re
 from collections.abc import Collection, Iterable
 from pathlib import Path
@@ -25,13 +26,27 @@ from artiplan.errors import InputError, SourceLocation
 from artiplan.semantics.plan import Plan, TimedAction, TimedEvent
 
 _NUM = r"[+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?"
-_TIME = re.compile(rf"\s*({_NUM})\s*:\s*")
-_NUMBER = re.compile(rf"\s*{_NUM}\s*")
-_ACTION = re.compile(r"\(\s*([^()\s;]+)((?:\s+[^()\s;]+)*)\s*\)\s*")
-_DURATION = re.compile(rf"\[\s*({_NUM})\s*\]\s*")
-_WAITING = re.compile(rf"-+\s*waiting\s*-+\s*(?:\[\s*({_NUM})\s*\])?\s*", re.IGNORECASE)
-_PLANEND = re.compile(r"@PlanEND\s*", re.IGNORECASE)
-_EVENT_COMMENT = re.compile(rf";+\s*({_NUM})\s*:\s*\(\s*([^()\s]+)((?:\s+[^()\s]+)*)\s*\)\s*$")
+
+
+class _Patterns:
+    """The reader's regular expressions, compiled when a plan is first read (not at import:
+    ``artiplan plan`` only writes plans)."""
+
+    def __init__(self) -> None:
+        self.time = re.compile(rf"\s*({_NUM})\s*:\s*")
+        self.number = re.compile(rf"\s*{_NUM}\s*")
+        self.action = re.compile(r"\(\s*([^()\s;]+)((?:\s+[^()\s;]+)*)\s*\)\s*")
+        self.duration = re.compile(rf"\[\s*({_NUM})\s*\]\s*")
+        self.waiting = re.compile(rf"-+\s*waiting\s*-+\s*(?:\[\s*({_NUM})\s*\])?\s*",
+                                  re.IGNORECASE)
+        self.planend = re.compile(r"@PlanEND\s*", re.IGNORECASE)
+        self.event_comment = re.compile(
+            rf";+\s*({_NUM})\s*:\s*\(\s*([^()\s]+)((?:\s+[^()\s]+)*)\s*\)\s*$")
+
+
+@functools.cache
+def _patterns() -> _Patterns:
+    return _Patterns()
 
 
 def format_time(t: float) -> str:
@@ -47,6 +62,7 @@ def parse_plan(text: str, filename: str = "<plan>", event_names: Collection[str]
     Unknown action names are *not* an error here: the validator reports them ("bad operator").
     """
     events_lower = {e.lower() for e in event_names}
+    event_comment = _patterns().event_comment
     actions: list[TimedAction] = []
     events: list[TimedEvent] = []
     end: float | None = None
@@ -56,7 +72,7 @@ def parse_plan(text: str, filename: str = "<plan>", event_names: Collection[str]
         if not stripped:
             continue
         if stripped.startswith(";"):
-            m = _EVENT_COMMENT.match(stripped)
+            m = event_comment.match(stripped)
             if m:
                 events.append(TimedEvent(float(m.group(1)), m.group(2), tuple(m.group(3).split())))
             continue
@@ -82,9 +98,10 @@ def _parse_line(line: str, lineno: int, filename: str) -> TimedAction | float:
             found=found[:40],
         )
 
-    m = _TIME.match(line)
+    pat = _patterns()
+    m = pat.time.match(line)
     if not m:
-        if mn := _NUMBER.match(line):
+        if mn := pat.number.match(line):
             raise error(mn.end(), "':' after the time")
         raise error(len(line) - len(line.lstrip()), "a time 't:' (VAL format 't: (action args)')")
     t = float(m.group(1))
@@ -92,14 +109,14 @@ def _parse_line(line: str, lineno: int, filename: str) -> TimedAction | float:
         raise error(m.start(1), "a non-negative time")
     pos = m.end()
     result: TimedAction | float
-    if mw := _WAITING.match(line, pos):
+    if mw := pat.waiting.match(line, pos):
         result, pos = (float(mw.group(1)) if mw.group(1) else t), mw.end()
-    elif mp := _PLANEND.match(line, pos):
+    elif mp := pat.planend.match(line, pos):
         result, pos = t, mp.end()
-    elif ma := _ACTION.match(line, pos):
+    elif ma := pat.action.match(line, pos):
         pos = ma.end()
         duration = None
-        if md := _DURATION.match(line, pos):
+        if md := pat.duration.match(line, pos):
             duration, pos = float(md.group(1)), md.end()
         result = TimedAction(t, ma.group(1), tuple(ma.group(2).split()), duration, line=lineno)
     else:
@@ -130,12 +147,12 @@ def read_plan_for(path: str | Path, event_names: Collection[str]) -> Plan:
 def parse_enhsp_output(text: str, event_names: Collection[str] = ()) -> Plan:
     """The plan in ENHSP's printed output (``Found Plan:`` lines), ignoring everything else."""
     keep: list[str] = []
-    started = False
+    started, time = False, _patterns().time
     for line in text.splitlines():
         if line.strip().startswith("Found Plan"):
             started, keep = True, []
             continue
-        if started and _TIME.match(line) and ("(" in line or "waiting" in line or "@" in line):
+        if started and time.match(line) and ("(" in line or "waiting" in line or "@" in line):
             keep.append(line)
         elif started and keep and not line.strip():
             started = False

@@ -6,19 +6,20 @@ users (``execution``, ``bench``, ``up``), so that none of them imports another f
 
 from __future__ import annotations
 
-import dataclasses
 import math
 from collections.abc import Iterator, Mapping
-from dataclasses import dataclass, field
 from enum import Enum
-from typing import Any
 
 from artiplan.errors import ExitCode
 from artiplan.pddl.task import Task
+from artiplan.records import dataclass, field, names
 from artiplan.semantics.plan import Plan
 from artiplan.semantics.trajectory import Trajectory
 from artiplan.semantics.walks import robustness
-from artiplan.tolerances import VAL_EVENT_WINDOW
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 
 class PlanStatus(Enum):
@@ -61,8 +62,14 @@ class Margins:
         ok: All at least what the planner aims for (``note`` says what is missing).
         object_event_gap_s: The closest two events of one object (their first argument, e.g.
             a link) come at distinct times [s] (None when no object has two). Below VAL's
-            event window VAL fires the later one at the earlier one's happening, which can
-            re-enable an event that already fired there ("Attempt to trigger event twice").
+            event window (0.01 s) VAL fires the later one at the earlier one's happening,
+            which can re-enable an event that already fired there ("Attempt to trigger event
+            twice"); a statistic, not counted in ``ok`` (VAL accepts most such plans).
+        coincident: Instants [s] at which events fired for two objects by two crossings of
+            their own (two links wrapping at once), not at an action's time. VAL computes
+            the two crossings a rounding error apart and rejects the plan ("does not falsify
+            its precondition", benchmarks/results/semantics.md); not counted in ``ok``: the
+            dynamics, not the plan's timing, often make them.
     """
 
     event_gap_s: float | None
@@ -70,6 +77,7 @@ class Margins:
     ok: bool
     note: str = ""
     object_event_gap_s: float | None = None
+    coincident: tuple[float, ...] = ()
 
 
 def margins_of(task: Task, plan: Plan, trajectory: Trajectory, event_gap: float) -> Margins:
@@ -82,15 +90,24 @@ def margins_of(task: Task, plan: Plan, trajectory: Trajectory, event_gap: float)
     notes = []
     if gap is not None and gap < event_gap - 1e-9:
         notes.append(f"an action {gap:.6f} s from an event (wanted {event_gap:g} s)")
-    if pair is not None and pair[0] < VAL_EVENT_WINDOW:
-        notes.append(f"two events of {pair[1]} {pair[0]:.6f} s apart (VAL merges events "
-                     f"within {VAL_EVENT_WINDOW:g} s)")
     if margin is not None and margin < GOAL_MARGIN_MIN:
         notes.append(f"the goal holds by only {margin:.2g} at the end")
     return Margins(None if gap is None else round(gap, 6),
                    None if margin is None or math.isinf(margin) else round(margin, 6),
                    not notes, "; ".join(notes),
-                   None if pair is None else round(pair[0], 6))
+                   None if pair is None else round(pair[0], 6),
+                   _coincident(plan, trajectory))
+
+
+def _coincident(plan: Plan, trajectory: Trajectory) -> tuple[float, ...]:
+    """Instants (not an action's) at which events fired for several first arguments."""
+    actions = {round(a.time, 6) for a in plan.actions}
+    seen: dict[float, set[str]] = {}
+    for e in trajectory.events:
+        t = round(e.time, 6)
+        if e.args and t not in actions and not e.after_actions:
+            seen.setdefault(t, set()).add(e.args[0])
+    return tuple(sorted(t for t, objs in seen.items() if len(objs) > 1))
 
 
 def _object_event_gap(trajectory: Trajectory) -> tuple[float, str] | None:
@@ -111,7 +128,7 @@ def _object_event_gap(trajectory: Trajectory) -> tuple[float, str] | None:
 
 
 @dataclass
-class PlanStats(Mapping[str, Any]):
+class PlanStats(Mapping[str, "Any"]):
     """Counters and timings of a planning call (typed; also readable as a mapping, e.g.
     ``stats["expanded"]``, for scripts and JSON).
 
@@ -122,9 +139,10 @@ class PlanStats(Mapping[str, Any]):
     ``attempts`` (restarts), ``repairs`` / ``repaired`` (timing repairs tried / that gave the
     plan), ``repair_evals`` (their trajectory simulations). Seconds: ``parse_s``, ``ground_s``,
     ``compile_s``, ``search_s``,
-    ``heuristic_s``, ``validate_s``, ``improve_s``, ``total_s``. The plan: ``plan_length``,
-    ``makespan`` [s], ``validated``, ``margins``. The improvement phase: ``improve_*``,
-    ``first_makespan``, ``first_length``.
+    ``heuristic_s``, ``validate_s``, ``improve_s``, ``separate_s``, ``total_s``. The plan:
+    ``plan_length``, ``makespan`` [s], ``validated``, ``margins``, ``separated`` (its tail
+    shifted to pull coincident crossings apart, :mod:`artiplan.search.separate`). The
+    improvement phase: ``improve_*``, ``first_makespan``, ``first_length``.
     """
 
     expanded: int = 0
@@ -150,11 +168,13 @@ class PlanStats(Mapping[str, Any]):
     heuristic_s: float = 0.0
     validate_s: float = 0.0
     improve_s: float = 0.0
+    separate_s: float = 0.0
     repair_s: float = 0.0
     total_s: float = 0.0
     plan_length: int | None = None
     makespan: float | None = None
     validated: bool = False
+    separated: bool = False
     margins: Margins | None = None
     initial_events: list[str] = field(default_factory=list)
     rejected_reasons: list[str] = field(default_factory=list)
@@ -174,19 +194,27 @@ class PlanStats(Mapping[str, Any]):
 
     def as_dict(self) -> dict[str, Any]:
         """Every field, JSON-ready (``margins`` as a dict)."""
+        import dataclasses
+
         return dataclasses.asdict(self)
 
     def __getitem__(self, key: str) -> Any:
-        if key not in self.__dataclass_fields__:
+        if key not in _STAT_KEYS:
             raise KeyError(key)
         value = getattr(self, key)
-        return dataclasses.asdict(value) if isinstance(value, Margins) else value
+        if isinstance(value, Margins):  # as dataclasses.asdict (its fields are scalars)
+            return {name: getattr(value, name) for name in names(Margins)}
+        return value
 
     def __iter__(self) -> Iterator[str]:
-        return iter(self.__dataclass_fields__)
+        return iter(_STAT_NAMES)
 
     def __len__(self) -> int:
-        return len(self.__dataclass_fields__)
+        return len(_STAT_NAMES)
+
+
+_STAT_NAMES = names(PlanStats)
+_STAT_KEYS = frozenset(_STAT_NAMES)
 
 
 @dataclass

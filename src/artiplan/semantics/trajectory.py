@@ -4,18 +4,21 @@ any time (the execution layer's prediction). CSV format: shared/docs/conventions
 from __future__ import annotations
 
 import bisect
-import csv
 import math
-from dataclasses import dataclass, field
 from pathlib import Path
-from typing import Literal
 
 from artiplan.pddl.task import fluent_column
+from artiplan.records import dataclass, field
 from artiplan.semantics.kernel import Segment
 from artiplan.semantics.plan import TimedEvent
 from artiplan.semantics.state import State
 
-RowKind = Literal["init", "action", "event", "sample"]
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Literal
+
+if TYPE_CHECKING:
+    RowKind = Literal["init", "action", "event", "sample"]
 
 
 @dataclass(frozen=True)
@@ -103,6 +106,8 @@ class Trajectory:
 
     def to_csv(self, path: str | Path) -> None:
         """Write the wide CSV (conventions.md); times and values with full precision."""
+        import csv  # here: most runs write no CSV
+
         with open(path, "w", newline="") as fh:
             w = csv.writer(fh)
             w.writerow(self.columns)

@@ -28,10 +28,10 @@ What is checked, exactly (the kernel, :mod:`artiplan.semantics.kernel`, does the
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
 
 from artiplan.errors import InvalidPlanError
 from artiplan.pddl.task import Condition, GroundAction, Task
+from artiplan.records import dataclass, field
 from artiplan.semantics.cache import per_task
 from artiplan.semantics.compiled import CompiledTask, Operator, compile_task
 from artiplan.semantics.interference import interferes

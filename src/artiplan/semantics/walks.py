@@ -9,8 +9,10 @@ false parts, printing. The validator, the planner, the heuristic and the proofs 
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable, Sequence
+from types import CodeType
 
 from artiplan.pddl.task import (
     And,
@@ -29,6 +31,10 @@ from artiplan.pddl.task import (
 )
 from artiplan.semantics import polynomial as P
 from artiplan.tolerances import VAL, Tolerances
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from typing import Any
 
 #: A linear form ``({fluent: coefficient}, constant)``.
 Linear = tuple[dict[int, float], float]
@@ -101,6 +107,26 @@ def power(a: float, b: float) -> float:
 
 #: Names the generated sources (:func:`expr_source`) use, for their ``eval``.
 SOURCE_GLOBALS: dict[str, object] = {"_pow": power}
+
+
+@functools.lru_cache(maxsize=65536)
+def _code(source: str, mode: str) -> CodeType:
+    # Python's compile() is most of the cost of compiling a task, and the same sources come
+    # back: the planner's and the validator's views of one task, every re-planning problem.
+    return compile(source, "<artiplan-generated>", mode)
+
+
+def source_function(source: str) -> Callable[..., Any]:
+    """The function a generated ``lambda ...: ...`` expression ``source`` evaluates to."""
+    fn: Callable[..., Any] = eval(_code(source, "eval"), dict(SOURCE_GLOBALS))  # noqa: S307 - source generated from the task
+    return fn
+
+
+def source_definitions(source: str) -> dict[str, Any]:
+    """The names generated ``def`` statements ``source`` define (a fresh namespace)."""
+    namespace: dict[str, Any] = dict(SOURCE_GLOBALS)
+    exec(_code(source, "exec"), namespace)  # noqa: S102 - source generated from the task
+    return namespace
 
 
 def _apply(op: str, a: float, b: float) -> float:
