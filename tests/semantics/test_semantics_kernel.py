@@ -227,3 +227,27 @@ def test_event_cascade_fires_in_rounds() -> None:
     facts, values, active = kernel.advance(0.0, facts, values, 2.5, log, active)
     assert [(round(t, 12), i) for t, i in log] == [(1.0, 0), (1.0, 1), (2.0, 0), (2.0, 1)]
     assert values == pytest.approx((0.5, 2.0))
+
+
+def test_a_flow_that_blows_up_is_no_crash() -> None:
+    # v' = -(v^2): from v = -1 the speed reaches -inf at t = 1; an interval power and an RK4
+    # step overflow on the way (they raised OverflowError): nothing is found beyond
+    from artiplan.pddl import load_task
+    from artiplan.semantics.walks import interval
+
+    domain = """(define (domain blow) (:requirements :fluents :time)
+      (:predicates (on)) (:functions (v) (d))
+      (:process fall :parameters () :precondition (and (on))
+        :effect (and (decrease (v) (* #t (^ (v) 2))) (increase (d) (* #t 1)))))"""
+    problem = """(define (problem blow-1) (:domain blow)
+      (:init (on) (= (v) -1) (= (d) 0)) (:goal (and (>= (d) 100))))"""
+    task = load_task(domain, problem)
+    ct = compile_task(task)
+    kernel = Kernel(ct)
+    facts, values, active = kernel.settle(0.0, ct.init_facts, ct.init_values, [])
+    flow = kernel.flow_of(active, values)
+    assert isinstance(flow, NumericFlow)
+    goal = tuple(sorted(ct.goal_comps))
+    assert kernel.next_change(values, flow, goal, 60.0) is None
+    power = BinOp("^", FluentRef(0), Const(2.0))
+    assert interval(power, lambda i: (1e200, 1e201))[1] == math.inf

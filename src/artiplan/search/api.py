@@ -133,10 +133,18 @@ DELTAS = (1.0, 0.5, 0.25, 0.1, 0.05)
 SEPARATE_S = 10.0
 
 
-def schedule() -> Iterator[Attempt]:
+def schedule(numeric_first: bool = False) -> Iterator[Attempt]:
     """The attempts in order: ``FIRST``, then rounds of (numeric, rate) with doubled budgets
-    and finer steps, ending with an unbounded numeric search on the finest step."""
-    yield from FIRST
+    and finer steps, ending with an unbounded numeric search on the finest step.
+
+    ``numeric_first``: ``FIRST``'s numeric attempts go first (a task whose goal needs a
+    position and its speed steered together, :mod:`artiplan.search.motion`, which the rate
+    heuristic cannot read)."""
+    if numeric_first:
+        yield from (a for a in FIRST if a.numeric)
+        yield from (a for a in FIRST if not a.numeric)
+    else:
+        yield from FIRST
     for r, delta in enumerate(DELTAS):
         last = r == len(DELTAS) - 1
         yield Attempt(True, None, 2.0, None if last else 400 * 2 ** r, delta)
@@ -249,7 +257,10 @@ class _Planning:
         outcome: SearchOutcome | None = None
         exhausted: set[tuple[bool, float | None]] = set()
         try:
-            for n, attempt in enumerate(schedule(), 1):
+            from artiplan.search.motion import find_controls, find_motions
+
+            second_order = bool(find_motions(self.task, find_controls(self.task)))
+            for n, attempt in enumerate(schedule(second_order), 1):
                 kind = (attempt.numeric, attempt.delta)
                 if kind in exhausted:
                     continue  # the same operators searched their whole space already

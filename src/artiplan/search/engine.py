@@ -83,11 +83,19 @@ class WaitDelta:
 
 
 @dataclass(frozen=True, slots=True)
+class WaitHold:
+    """Wait ``seconds`` [s]: as long as the heuristic's motion profile keeps the controls as
+    they are (a car accelerating until it must cruise or brake)."""
+
+    seconds: float
+
+
+@dataclass(frozen=True, slots=True)
 class Start:
     """How the initial node is reached."""
 
 
-Op = Apply | WaitNext | WaitGroup | WaitGoal | WaitFor | WaitBefore | WaitDelta | Start
+Op = Apply | WaitNext | WaitGroup | WaitGoal | WaitFor | WaitBefore | WaitDelta | WaitHold | Start
 WAIT_NEXT, WAIT_GOAL, WAIT_BEFORE, WAIT_DELTA, START = (WaitNext(), WaitGoal(), WaitBefore(),
                                                        WaitDelta(), Start())
 
@@ -247,6 +255,9 @@ class Search:
             assert self.config.delta is not None
             res = self.waits.delta(parent.time, parent.facts, parent.values, log,
                                    parent.active, self.config.delta)
+        elif isinstance(op, WaitHold):
+            res = self.waits.hold(parent.time, parent.facts, parent.values, log,
+                                  parent.active, op.seconds)
         elif isinstance(op, WaitFor):
             act = self.ct.actions[op.action]
             res = self.waits.until(parent.time, parent.facts, parent.values, act.pre,
@@ -447,6 +458,8 @@ class Search:
         """Operators of a node, preferred first (their order breaks ties)."""
         ops: list[tuple[Op, bool]] = []
         if moving:
+            if ev.hold > 0.0:  # the heuristic's motion keeps the controls this long
+                ops.append((WaitHold(ev.hold), True))
             if not ev.actions_needed and ev.unsatisfied:
                 ops.append((WAIT_GOAL, True))
             ops.extend((self.group_waits[gi], True) for gi in ev.waits)

@@ -99,6 +99,7 @@ class Evaluation:
     waits: tuple[int, ...]  # goal groups whose chosen process already runs
     actions_needed: bool  # some unsatisfied group needs a new action
     unsatisfied: int
+    hold: float = 0.0  # a wait [s] the relaxation asks for before the next action (0: none)
 
 
 def propagate(heap: list[tuple[float, int]], cost: list[float], users: Sequence[Sequence[int]],

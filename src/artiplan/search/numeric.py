@@ -16,8 +16,14 @@ to the fact literals, and computes additive costs (``hadd``, as ENHSP's default)
   comparison ``rate > 0`` (or ``< 0``): the chain ``d`` <- ``v`` <- ``a`` <- ``accelerate``.
 
 Every change is evaluated in the current state (a relaxation, not a proof: the search stays
-complete). Preferred operators are the applicable actions of the relaxed plan, and the actions
-whose facts hold while a running process brings their numbers (the search waits for those).
+complete), except where a position is steered through its speed by a control (a car's
+acceleration; :mod:`artiplan.search.secondorder`): times then take the most favourable control
+levels, and a conjunction wanting the position in a box with the speed in a band is costed
+jointly, by the least motion profile and the control steps it needs by its deadline.
+Preferred operators are the applicable actions of the relaxed plan, and the actions whose facts
+hold while a running process brings their numbers (the search waits for those); a motion goal
+adds the actions that move its control the way it must go first, and a wait (``hold``) for as
+long as its profile keeps the controls as they are.
 """
 
 from __future__ import annotations
@@ -40,6 +46,8 @@ from artiplan.pddl.task import (
 )
 from artiplan.records import dataclass
 from artiplan.search.heuristic import Evaluation, GoalGroup, HeuristicConfig, propagate
+from artiplan.search.motion import MotionGoal
+from artiplan.search.secondorder import Corner, SecondOrder, Steering, applicable
 from artiplan.semantics.compiled import CompiledTask, compile_condition
 from artiplan.semantics.walks import (
     conjuncts,
@@ -98,6 +106,8 @@ class _Op:
     rate: PFn | None = None
     sign: int = 0
     reads: frozenset[int] = frozenset()  # process: the fluents its rate reads
+    controls: tuple[int, ...] = ()  # process: controls its rate or the rates it reads read
+    motion: tuple[MotionGoal, ...] = ()  # action: the position/speed goals of its precondition
 
 
 class NumericHeuristic:
@@ -144,6 +154,16 @@ class NumericHeuristic:
             fn, used = compile_condition(conj, ct.comps, ct.tol, snap=ct.strict)
             self.groups.append(GoalGroup(fn, used))
             self.goal_nodes.append(self._parts(conj) or ())
+        # the second-order terms (search/secondorder.py): controls behind process times,
+        # motion goals of actions and goal conjuncts
+        self.second = SecondOrder(task, self._flow, active_fn, self.config.time_weight, 2 * n)
+        for o in self.ops:
+            if o.kind == "process":
+                o.controls = self.second.controls_of(o.reads)
+            elif o.kind == "action":
+                o.motion = self.second.goals(task.actions[o.index].precondition, self._cond)
+        self.goal_motion = [self.second.goals(conj, self._cond)
+                            for conj in conjuncts(task.goal)]
         # which operators may move which conditions (static: by the fluents they touch)
         readers: dict[int, list[int]] = {}
         for k, c in enumerate(self.conds):
@@ -322,12 +342,14 @@ class NumericHeuristic:
                 slope = self._slope(k, o.fluent, values)
                 if slope * o.sign * way <= 0.0:
                     return None
-                r = abs(slope) * o.rate(values) * o.sign
-                r2 = abs(slope) * self._rate_change(o, values, flow) * o.sign
-                t = _time_to(need, r, r2) if math.isfinite(r + r2) else None
-                if t is None or t != t:
-                    return 1.0, 0.0  # the rate turns the right way only later: time unknown
-                return tw * t, t
+                t = self._process_time(o, need, slope, values, flow)
+                # the time label: at the most favourable levels of the controls (an action
+                # may yet raise the acceleration), so a deadline prunes only what is lost
+                best = self._best_time(o, need, slope, values, active, corners) \
+                    if o.controls else None
+                if t is None:  # the rate turns the right way only later
+                    return 1.0, best or 0.0
+                return tw * t, t if best is None else min(t, best)
             key = o.index if o.kind == "action" else -1 - o.index
             if key not in after:
                 src = ct.actions[o.index] if o.kind == "action" else ct.events[o.index]
@@ -347,6 +369,8 @@ class NumericHeuristic:
                 return None
             return float(min(MAX_REPEATS, math.ceil(need / abs(delta) - 1e-9))), 0.0
 
+        corners: dict[tuple[int, ...], list[Corner]] = {}
+        steer: dict[int, Steering] = {}  # op -> how its motion goals steer the controls
         remaining = [len(o.pre) for o in self.ops]
         acc = [0.0] * len(self.ops)
         heap: list[tuple[float, int]] = [(0.0, i) for i, c in enumerate(cost) if c == 0.0]
@@ -355,6 +379,12 @@ class NumericHeuristic:
             o = self.ops[i]
             c0 = acc[i]
             t0 = max((need_t[q] for q in o.pre), default=0.0)
+            if o.motion:
+                joint = self.second.joint(o.motion, o.pre, facts, values, active, cost, left,
+                                          steer.setdefault(i, Steering()))
+                if joint is None:
+                    return
+                c0, t0 = c0 + joint[0], max(t0, joint[1])
             if left and t0 > 0.0:
                 # a deadline among its preconditions passes before the others can hold
                 for q in o.pre:
@@ -378,7 +408,25 @@ class NumericHeuristic:
             if not o.pre:
                 fire(i)
         propagate(heap, cost, self.users, remaining, acc, fire)
-        return self._result(cost, supp, acc, active, facts, values, need_t, left)
+        return self._result(cost, supp, acc, active, facts, values, need_t, left, steer)
+
+    def _process_time(self, o: _Op, need: float, slope: float, values: Values,
+                      flow: dict[int, float]) -> float | None:
+        """Time [s] process operator ``o`` takes to move a condition of slope ``slope`` by
+        ``need`` at ``values`` (rate and its change along ``flow``); None: not that way."""
+        assert o.rate is not None
+        r = abs(slope) * o.rate(values) * o.sign
+        r2 = abs(slope) * self._rate_change(o, values, flow) * o.sign
+        t = _time_to(need, r, r2) if math.isfinite(r + r2) else None
+        return None if t is None or t != t else t
+
+    def _best_time(self, o: _Op, need: float, slope: float, values: Values,
+                   active: tuple[int, ...], cache: dict[tuple[int, ...], list[Corner]]
+                   ) -> float | None:
+        """The least time [s] of ``o`` with its controls at either end of their levels."""
+        times = [t for v, f in self.second.corners(o.controls, values, active, cache)
+                 if (t := self._process_time(o, need, slope, v, f)) is not None]
+        return min(times, default=None)
 
     def _time_left(self, k: int, pv: float, values: Values, flow: dict[int, float]) -> float:
         """Time [s] until deadline condition ``k`` (it holds now) fails along the flow."""
@@ -392,7 +440,7 @@ class NumericHeuristic:
 
     def _result(self, cost: list[float], supp: list[int], acc: list[float],
                 active: tuple[int, ...], facts: int, values: Values, need_t: list[float],
-                left: dict[int, float]) -> Evaluation:
+                left: dict[int, float], steer: dict[int, Steering]) -> Evaluation:
         """``h``, preferred actions and waits from the costs (a goal conjunct that needs
         longer than a deadline of the goal leaves counts as unreachable)."""
         base = 2 * self.n
@@ -405,6 +453,7 @@ class NumericHeuristic:
         preferred: set[int] = set()
         seen: set[int] = set()
         running = set(active)
+        holds: list[float] = []  # the motion goals' waits before their next control step
 
         def ready_process(i: int) -> bool:
             o = self.ops[i]
@@ -416,11 +465,14 @@ class NumericHeuristic:
             i = supp[node]
             seen.add(i)
             o = self.ops[i]
+            way = steer.get(i, Steering())
+            holds.append(way.hold)
             if o.kind == "action":
                 late = [q for q in o.pre if cost[q] > 0.0]
-                if all(q >= 2 * self.n and supp[q] >= 0 and ready_process(supp[q])
-                       for q in late):
+                if not way.steps and all(q >= 2 * self.n and supp[q] >= 0 and
+                                         ready_process(supp[q]) for q in late):
                     preferred.add(o.index)  # applicable, or its numbers are on their way
+            preferred.update(a for a in way.actions if applicable(self.ct, a, facts, values))
             for q in o.pre:
                 visit(q)
 
@@ -432,16 +484,26 @@ class NumericHeuristic:
             c = sum(cost[q] for q in nodes) if nodes else 1.0
             if any(need_t[q] > goal_left for q in nodes):
                 c = math.inf
+            toward = Steering()
+            if self.goal_motion[gi] and c < math.inf:
+                joint = self.second.joint(self.goal_motion[gi], nodes, facts, values, active,
+                                          cost, left, toward)
+                c = math.inf if joint is None or joint[1] > goal_left else c + joint[0]
+                preferred.update(a for a in toward.actions if applicable(self.ct, a, facts, values))
+                holds.append(toward.hold)
             h += self.config.unreachable_cost if c == math.inf else c
             late = [q for q in nodes if cost[q] > 0.0]
-            if late and all(supp[q] >= 0 and ready_process(supp[q]) for q in late):
+            if late and not toward.steps and all(supp[q] >= 0 and ready_process(supp[q])
+                                                 for q in late):
                 waits.append(gi)
             else:
                 needed = True
             for q in nodes:
                 visit(q)
         order = tuple(sorted(preferred))
-        return Evaluation(h, order, tuple(waits), needed, unsat)
+        hold = min(holds, default=math.inf)
+        return Evaluation(h, order, tuple(waits), needed, unsat,
+                          hold if math.isfinite(hold) else 0.0)
 
 
 def _time_to(need: float, r: float, r2: float) -> float | None:

@@ -139,6 +139,15 @@ class Waits:
         end = ceil_grid((math.floor((t + self.grid) / step + 1e-9) + 1) * step, self.grid)
         return self._advance(t, facts, values, end, log, active)
 
+    def hold(self, t: float, facts: int, values: Values, log: EventLog,
+             active: tuple[int, ...], seconds: float) -> Arrival | None:
+        """For ``seconds`` [s] (to the grid time at or after ``t + seconds``, at least a grid
+        step after ``t``), or None if nothing moves."""
+        if not self.kernel.flow_of(active, values).moving:
+            return None
+        end = max(ceil_grid(t + seconds, self.grid), grid_after(t, self.grid))
+        return self._advance(t, facts, values, end, log, active)
+
     def until(self, t: float, facts: int, values: Values, cond: CondFn,
               cond_comps: frozenset[int], log: EventLog, active: tuple[int, ...],
               max_steps: int = 64, margin: float = 0.0,

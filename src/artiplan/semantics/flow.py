@@ -271,6 +271,12 @@ class NumericFlow(Flow):
                     raise
                 h *= 0.5
                 continue
+            except OverflowError:  # the solution blows up (v' = -c v^2 below 0): inf from here
+                self._times.append(t + h)
+                self._states.append(tuple(math.inf if f in self.changing else v
+                                          for f, v in enumerate(x)))
+                self._boxes.append({f: (-math.inf, math.inf) for f in self.changing})
+                return
             err = max((abs(full[f] - half[f]) / max(1.0, abs(half[f])) for f in self.changing),
                       default=0.0)
             if err <= self.RTOL or h <= self.H_MIN:

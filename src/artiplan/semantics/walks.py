@@ -298,7 +298,8 @@ def _power(a: float, b: float, c: float, d: float) -> Box:
     """Enclosure of x ** y for x in [a, b], y in [c, d] (y constant, or x >= 0)."""
     if c == d and float(c).is_integer():
         n = int(c)
-        ends = [a**n, b**n] if a != 0.0 or n >= 0 else [-math.inf, math.inf]
+        ends = [_int_power(a, n), _int_power(b, n)] if a != 0.0 or n >= 0 else \
+            [-math.inf, math.inf]
         lo, hi = min(ends), max(ends)
         if n % 2 == 0 and n > 0 and a < 0.0 < b:
             lo = 0.0
@@ -310,6 +311,15 @@ def _power(a: float, b: float, c: float, d: float) -> Box:
     except (OverflowError, ZeroDivisionError):
         return -math.inf, math.inf
     return min(ends), max(ends)
+
+
+def _int_power(x: float, n: int) -> float:
+    """``x ** n`` for an integer ``n``, +-inf where the float overflows (an enclosure of a
+    numeric flow that diverges)."""
+    try:
+        return x**n
+    except OverflowError:
+        return math.copysign(math.inf, x) if n % 2 else math.inf
 
 
 # ----------------------------------------------------------------------------------- compiling
