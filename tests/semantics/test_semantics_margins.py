@@ -16,10 +16,14 @@ OBJ = ArticulatedObject(3)
 PLAN = "0: (start-decrease L1 L2 z-axis)\n0.5: (stop-decrease L1 L2 z-axis)\n0.6: (observe)\n"
 
 
-def _margins(l3: float):  # type: ignore[no-untyped-def]
-    init = Configuration.from_angles([0, 0, 0], [0, 1.5, l3])
+def _task(init: Configuration, target: Configuration | None = None):  # type: ignore[no-untyped-def]
     options = EncodingOptions("ng")
-    task = load_task(domain_pddl(OBJ, options), problem_pddl(OBJ, init, init, options, "window"))
+    return load_task(domain_pddl(OBJ, options),
+                     problem_pddl(OBJ, init, target or init, options, "window"))
+
+
+def _margins(l3: float):  # type: ignore[no-untyped-def]
+    task = _task(Configuration.from_angles([0, 0, 0], [0, 1.5, l3]))
     plan = parse_plan(PLAN)
     report = validate(task, plan)
     assert report.trajectory is not None
@@ -36,9 +40,7 @@ def test_coincident_crossings_of_two_links_are_reported(l3: float, coincide: boo
 
 def test_closest_events_of_one_object() -> None:
     # Down and back up: each link wraps twice, L3 (nearer the boundary) sooner.
-    init = Configuration.from_angles([0, 0, 0], [0, 1.5, 3.0])
-    options = EncodingOptions("ng")
-    task = load_task(domain_pddl(OBJ, options), problem_pddl(OBJ, init, init, options, "window"))
+    task = _task(Configuration.from_angles([0, 0, 0], [0, 1.5, 3.0]))
     plan = parse_plan("0: (start-decrease L1 L2 z-axis)\n0.5: (stop-decrease L1 L2 z-axis)\n"
                       "0.501: (start-increase L1 L2 z-axis)\n1: (stop-increase L1 L2 z-axis)\n"
                       "1.1: (observe)\n")
@@ -54,10 +56,8 @@ def test_separate_pulls_apart_crossings_the_plan_made_coincide() -> None:
     from artiplan.search.separate import separate
 
     # Turn L3 onto L2's angle (4.5 -> 1.5), then carry both down through -0.2 together.
-    init = Configuration.from_angles([0, 0, 0], [0, 1.5, 4.5])
-    target = Configuration.from_angles([0, 0, 0], [0, 358.5, 358.5])
-    options = EncodingOptions("ng")
-    task = load_task(domain_pddl(OBJ, options), problem_pddl(OBJ, init, target, options, "window"))
+    task = _task(Configuration.from_angles([0, 0, 0], [0, 1.5, 4.5]),
+                 Configuration.from_angles([0, 0, 0], [0, 358.5, 358.5]))
     plan = parse_plan("0: (start-decrease L2 L3 z-axis)\n0.3: (stop-decrease L2 L3 z-axis)\n"
                       "0.301: (start-decrease L1 L2 z-axis)\n0.601: (stop-decrease L1 L2 z-axis)\n"
                       "0.7: (observe)\n")
@@ -78,9 +78,7 @@ def test_separate_leaves_crossings_of_the_initial_dynamics() -> None:
     from artiplan.search.separate import separate
 
     # L2 and L3 start at one angle: every shift of the plan moves both alike.
-    init = Configuration.from_angles([0, 0, 0], [0, 1.5, 1.5])
-    options = EncodingOptions("ng")
-    task = load_task(domain_pddl(OBJ, options), problem_pddl(OBJ, init, init, options, "window"))
+    task = _task(Configuration.from_angles([0, 0, 0], [0, 1.5, 1.5]))
     plan = parse_plan(PLAN)
     report = validate(task, plan)
     assert report.valid and report.trajectory is not None, report.reason

@@ -5,10 +5,11 @@ once) are exact for our validator, but stock VAL computes the two crossings a ro
 apart and rejects the plan ("does not falsify its precondition", benchmarks/results/
 semantics.md). A planner makes such instants itself: it stops two turns the same time after
 an event, so two links end at the same distance from a boundary and a later turn carries them
-over it together. This step shifts the plan's tail by a few milliseconds at one action before
-the first such instant, keeps the result only if the validator accepts it with its margins
-and fewer coincident instants, and gives up quietly otherwise (crossings that the initial
-dynamics make coincide cannot be moved by the plan).
+over it together. For each such instant in turn (at most :data:`MAX_INSTANTS`), this step
+shifts the plan's tail by a few milliseconds at one of the actions before it, keeps a shift
+only if the validator accepts it with its margins and fewer coincident instants, and gives up
+quietly otherwise (crossings that the initial dynamics make coincide cannot be moved by the
+plan).
 """
 
 from __future__ import annotations
@@ -53,16 +54,15 @@ def separate(
     for instant in margins.coincident[:MAX_INSTANTS]:
         found = _separate_at(task, plan, margins, instant, event_gap, validate, out_of_time)
         if found is not None:
-            plan, got = best = found
-            assert got.trajectory is not None
-            margins = margins_of(task, plan, got.trajectory, event_gap)
+            plan, got, margins = found
+            best = plan, got
     return best
 
 
 def _separate_at(
     task: Task, plan: Plan, before: Margins, instant: float, event_gap: float,
     validate: Callable[[Plan], ValidationReport], out_of_time: Callable[[], bool],
-) -> tuple[Plan, ValidationReport] | None:
+) -> tuple[Plan, ValidationReport, Margins] | None:
     earlier = [i for i, a in enumerate(plan.actions) if a.time < instant - 1e-9]
     for index in reversed(earlier[-MAX_ACTIONS:]):
         for delta in SHIFTS:
@@ -72,9 +72,11 @@ def _separate_at(
                 return None
             candidate = shifted_tail(plan, index, delta)
             got = validate(candidate)
-            if got.valid and got.trajectory is not None and _better(
-                    before, margins_of(task, candidate, got.trajectory, event_gap)):
-                return candidate, got
+            if not got.valid or got.trajectory is None:
+                continue
+            after = margins_of(task, candidate, got.trajectory, event_gap)
+            if _better(before, after):
+                return candidate, got, after
     return None
 
 
