@@ -118,6 +118,27 @@ def rejudge(src: Path, out: Path) -> None:
                 print(f"{k}/{len(rows)} plans re-judged", file=sys.stderr, flush=True)
 
 
+def rejudge_both(src: Path, out: Path, suite: Path, val_limit: float) -> None:
+    """Both validators again on every row of ``src``, with the domains and problems of
+    ``suite`` (today's encodings; the same problem ids): rows to ``out``, resumable."""
+    rows = read_rows_any(src)
+    done = {(r["source"], r["problem_id"], r["mutation"]) for r in read_rows_any(out)}
+    with out.open("a") as fh:
+        for k, row in enumerate(rows, 1):
+            if (row["source"], row["problem_id"], row["mutation"]) in done:
+                continue
+            old_domain, old_problem = Path(row["domain"]), Path(row["problem"])
+            model = old_domain.parent.name
+            domain = suite / model / "domain.pddl"
+            problem = suite / model / old_problem.name
+            row = {**row, "domain": str(domain), "problem": str(problem),
+                   **judge(str(domain), str(problem), row["plan"], val_limit)}
+            fh.write(json.dumps(row) + "\n")
+            fh.flush()
+            if k % 250 == 0:
+                print(f"{k}/{len(rows)} plans judged again", file=sys.stderr, flush=True)
+
+
 def judge(domain: str, problem: str, text: str, val_limit: float) -> dict[str, Any]:
     """Both verdicts on one plan text."""
     mine = judge_ours(domain, problem, text)
@@ -229,8 +250,14 @@ def main() -> None:
     ap.add_argument("--rejudge", metavar="ROWS",
                     help="re-run only our validator on the rows of this file (VAL's verdicts "
                     "kept) and write them to --out")
+    ap.add_argument("--rejudge-both", metavar="ROWS",
+                    help="re-run both validators on the plan texts of this file, with the "
+                    "domains and problems of SUITE (today's encodings), rows to --out")
     args = ap.parse_args()
-    if args.rejudge:
+    if args.rejudge_both:
+        rejudge_both(Path(args.rejudge_both), Path(args.out), Path(args.suite),
+                     args.val_time_limit)
+    elif args.rejudge:
         rejudge(Path(args.rejudge), Path(args.out))
     elif not args.only_summary:
         run(args)

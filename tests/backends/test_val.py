@@ -116,3 +116,29 @@ def test_a_runaway_val_is_stopped_by_its_limits(tmp_path: Path) -> None:
     assert verdict.cpu_s < 20
 
 
+
+
+@pytest.mark.parametrize("l3", [1.5, 1.5 + 1e-7, 1.5 + 1e-5, 1.5 + 1e-3, 1.505])
+def test_val_accepts_two_wraps_a_rounding_error_apart(l3: float, tmp_path: Path) -> None:
+    """One turn of L2 carries L3 through -0.2: the two wraps come 0 .. 5e-4 s apart. Without
+    the wrap flags VAL rejected 1e-8 .. 1e-4 s ("does not falsify its precondition",
+    benchmarks/results/semantics.md); both validators accept every case now."""
+    from artiplan.encoding import EncodingOptions, domain_pddl, problem_pddl
+    from artiplan.model import ArticulatedObject, Configuration
+    from artiplan.pddl import load_task
+    from artiplan.semantics import validate
+    from artiplan.semantics.plan_io import parse_plan
+
+    obj, options = ArticulatedObject(3), EncodingOptions("ng")
+    init = Configuration.from_angles([0, 0, 0], [0, 1.5, l3])
+    after = Configuration.from_angles([0, 0, 0], [0, 356.5, 356.5])  # 5 deg down, wrapped
+    domain, problem = tmp_path / "d.pddl", tmp_path / "p.pddl"
+    domain.write_text(domain_pddl(obj, options))
+    problem.write_text(problem_pddl(obj, init, after, options, "window"))
+    text = "0: (start-decrease L1 L2 z-axis)\n0.5: (stop-decrease L1 L2 z-axis)\n0.6: (observe)\n"
+    plan_file = tmp_path / "plan.txt"
+    plan_file.write_text(text)
+    verdict = validate_with_val(domain, problem, plan_file)
+    assert verdict.verdict == "valid", verdict.reason
+    report = validate(load_task(domain.read_text(), problem.read_text()), parse_plan(text))
+    assert report.valid, report.reason

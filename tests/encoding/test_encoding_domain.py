@@ -132,13 +132,31 @@ def test_wrap_events_never_land_on_each_others_boundary(model: str) -> None:
     m = EncodingOptions(model).margin  # type: ignore[arg-type]
     up = construct(d, ":event", "back-to-zero")
     down = construct(d, ":event", "back-to-360")
-    assert up[":precondition"] == [">=", ["angle", "?l", "?p"], "360"]
-    assert conjuncts(up[":effect"]) == [["assign", ["angle", "?l", "?p"], "0"]]
-    assert down[":precondition"] == ["<=", ["angle", "?l", "?p"], f"{-m:g}"]
-    assert conjuncts(down[":effect"]) == [["assign", ["angle", "?l", "?p"], f"{360 - m:g}"]]
+    zero, full = ["wrapped-to-zero", "?l", "?p"], ["wrapped-to-360", "?l", "?p"]
+    assert conjuncts(up[":precondition"]) == [[">=", ["angle", "?l", "?p"], "360"], ["not", zero]]
+    assert conjuncts(up[":effect"]) == [["assign", ["angle", "?l", "?p"], "0"], zero, ["not", full]]
+    assert conjuncts(down[":precondition"]) == [
+        ["<=", ["angle", "?l", "?p"], f"{-m:g}"], ["not", full]]
+    assert conjuncts(down[":effect"]) == [
+        ["assign", ["angle", "?l", "?p"], f"{360 - m:g}"], full, ["not", zero]]
     # Landing points are far from the other event's boundary: 100x VAL's slack (1e-4) at least,
     # and more than twice VAL's event window (0.01 s) at the robot's 10 deg/s.
     assert m >= 100 * 1e-4 and m / 10.0 >= 2 * 0.01 - 1e-12
+
+
+@pytest.mark.parametrize("model", ["ng", "ucm", "uacm"])
+def test_a_wrap_is_re_armed_only_a_quarter_turn_away(model: str) -> None:
+    # A wrap's flag is cleared by the other wrap or by crossing 90 (up) / 270 (down): far from
+    # both wrap boundaries and from the gravity thresholds (0, 180).
+    d = DOMAINS[model]
+    up = construct(d, ":event", "rearm-back-to-zero")
+    down = construct(d, ":event", "rearm-back-to-360")
+    assert conjuncts(up[":precondition"]) == [
+        ["wrapped-to-zero", "?l", "?p"], [">=", ["angle", "?l", "?p"], "90"]]
+    assert conjuncts(up[":effect"]) == [["not", ["wrapped-to-zero", "?l", "?p"]]]
+    assert conjuncts(down[":precondition"]) == [
+        ["wrapped-to-360", "?l", "?p"], ["<=", ["angle", "?l", "?p"], "270"]]
+    assert conjuncts(down[":effect"]) == [["not", ["wrapped-to-360", "?l", "?p"]]]
 
 
 def test_margin_scales_with_the_robot_speed() -> None:

@@ -166,8 +166,8 @@ def test_suite_ng_counts_follow_the_encoding(suite_dir: Path, n: int) -> None:
     task = load_task(suite_dir / "ng" / "domain.pddl", suite_dir / "ng" / f"p{n}-1.pddl")
     # start/stop x increase/decrease for n-1 neighbour pairs x 2 planes, plus `observe`.
     assert task.stats.actions == 8 * (n - 1) + 1
-    # back-to-zero / back-to-360 for every link and plane.
-    assert task.stats.events == 2 * 2 * n
+    # back-to-zero / back-to-360 and their re-arming for every link and plane.
+    assert task.stats.events == 4 * 2 * n
     # move-increase/decrease for L2..Ln (L1 is never rotated: pruned) x 2 planes, and
     # propagate-increase/decrease for the C(n-1, 2) `affects` pairs x 2 planes.
     assert task.stats.processes == 4 * (n - 1) + 4 * comb(n - 1, 2)

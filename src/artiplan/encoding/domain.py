@@ -11,7 +11,10 @@ each departure is marked ``DEPARTURE`` below and explained in docs/encodings.md:
    never bounce, and no two events of one motion fall within VAL's 0.01 s event window;
    angles live in [-m, 360). (Adding or subtracting 360 instead would keep a fixed-step
    planner's overshoot, but it made ENHSP's heuristic solve 5 instead of 9 of 10 small NG
-   problems: benchmarks/results/encoding.md.)
+   problems: benchmarks/results/encoding.md.) Each wrap sets a flag its own precondition
+   excludes (``wrapped-to-zero``/``wrapped-to-360``), cleared by the other wrap or a quarter
+   turn later, so that VAL sees every wrap falsify its precondition even when it fires the
+   wrap a rounding error early.
 2. Processes have only continuous effects (VAL rejects Booleans in processes): "gravity acts on
    l" is derived from the state. ``(link-index ?l)`` is static; ``(held-index)`` is the index of
    the link being rotated (1 when the hands are free: L1 is always clamped). A link feels
@@ -39,6 +42,13 @@ from artiplan.model import ArticulatedObject
 #: margin used is ``EncodingOptions.margin``, which also scales with the robot's speed).
 WRAP_MARGIN = 0.01
 
+#: Angles [deg] at which a wrap's flag is cleared again (``rearm-back-to-zero`` at or above
+#: 90, ``rearm-back-to-360`` at or below 270): a link can reach the same wrap again only by
+#: passing one of them or by the other wrap, which clears the flag too; both lie a quarter
+#: turn from every gravity threshold (0 and 180).
+REARM_ZERO = 90.0
+REARM_360 = 270.0
+
 
 def domain_name(options: EncodingOptions) -> str:
     """The domain's name: ``artiplan-ng``, ``artiplan-ucm`` or ``artiplan-uacm``."""
@@ -55,6 +65,8 @@ def _header(options: EncodingOptions) -> str:
         "(affects ?l1 - link ?l2 - link)",
         "(increasing-angle-robot ?l - link ?p - plane)",
         "(decreasing-angle-robot ?l - link ?p - plane)",
+        "(wrapped-to-zero ?l - link ?p - plane)",
+        "(wrapped-to-360 ?l - link ?p - plane)",
     ]
     if options.has_gravity:
         functions += ["(link-index ?l - link)", "(held-index)"]
@@ -188,15 +200,42 @@ def _wrap_events(options: EncodingOptions) -> str:
   ;; DEPARTURE (VAL): wrap below 0 only at -{m} and land on 360 - {m}, so that no wrap lands
   ;; within VAL's comparison slack of the other's boundary (no bouncing), and no two events of
   ;; a motion fall within VAL's event window of each other. Angles: [-{m}, 360).
+  ;; A wrap sets a flag that its precondition excludes, and crossing 90 (270) re-arms it: VAL
+  ;; fires a wrap due a rounding error after another object's event in a second round and
+  ;; then finds its numeric precondition still true; a flag is falsified whatever the arithmetic.
   (:event back-to-zero
     :parameters (?l - link ?p - plane)
-    :precondition (>= (angle ?l ?p) 360)
-    :effect (and (assign (angle ?l ?p) 0)))
+    :precondition (and
+      (>= (angle ?l ?p) 360)
+      (not (wrapped-to-zero ?l ?p)))
+    :effect (and
+      (assign (angle ?l ?p) 0)
+      (wrapped-to-zero ?l ?p)
+      (not (wrapped-to-360 ?l ?p))))
 
   (:event back-to-360
     :parameters (?l - link ?p - plane)
-    :precondition (<= (angle ?l ?p) -{m})
-    :effect (and (assign (angle ?l ?p) {fmt_number(360 - options.margin)})))
+    :precondition (and
+      (<= (angle ?l ?p) -{m})
+      (not (wrapped-to-360 ?l ?p)))
+    :effect (and
+      (assign (angle ?l ?p) {fmt_number(360 - options.margin)})
+      (wrapped-to-360 ?l ?p)
+      (not (wrapped-to-zero ?l ?p))))
+
+  (:event rearm-back-to-zero
+    :parameters (?l - link ?p - plane)
+    :precondition (and
+      (wrapped-to-zero ?l ?p)
+      (>= (angle ?l ?p) {fmt_number(REARM_ZERO)}))
+    :effect (and (not (wrapped-to-zero ?l ?p))))
+
+  (:event rearm-back-to-360
+    :parameters (?l - link ?p - plane)
+    :precondition (and
+      (wrapped-to-360 ?l ?p)
+      (<= (angle ?l ?p) {fmt_number(REARM_360)}))
+    :effect (and (not (wrapped-to-360 ?l ?p))))
 """
 
 

@@ -32,7 +32,7 @@ from artiplan.records import dataclass, field
 from artiplan.search.heuristic import Evaluation, Heuristic
 from artiplan.search.waits import Waits, ceil_grid, grid_after
 from artiplan.semantics.compiled import CompiledTask, Operator
-from artiplan.semantics.kernel import EventLog, Kernel, Values
+from artiplan.semantics.kernel import EventLog, Kernel, Values, latest_event
 from artiplan.semantics.walks import conjuncts
 from artiplan.tolerances import VAL_EVENT_WINDOW
 
@@ -197,7 +197,8 @@ class Search:
                                          *(used for _, used in ct.invariants))
         # comparisons whose change fires an event: acting just before one is a choice too
         self.triggers: frozenset[int] = frozenset().union(
-            *(e.pre_comps for e in ct.events)) if config.before_events else frozenset()
+            *(e.pre_comps for e in ct.events if e.index not in ct.rearms)
+        ) if config.before_events else frozenset()
         self.group_waits = [WaitGroup(g) for g in range(len(heuristic.groups))]
         self.nodes: list[Node] = []
         self.seen: set[tuple[int, tuple[int, ...], tuple[float | None, ...]]] = set()
@@ -210,7 +211,7 @@ class Search:
     def _key(self, node: Node) -> tuple[int, tuple[int, ...], tuple[float | None, ...]]:
         prec = self.config.value_precision
         values = tuple(None if v != v else round(v, prec) for v in node.values)
-        return node.facts, node.active, values
+        return node.facts & ~self.ct.guards, node.active, values
 
     def successor(self, parent: Node, pi: int, op: Op) -> Node | None:
         """The node ``op`` leads to from ``parent`` (index ``pi``), or None if inapplicable."""
@@ -243,7 +244,7 @@ class Search:
                 return None
             ready = round(t + self.config.epsilon, 9)
             return Node(t, facts, values, ready, pi, op, log, True, active, after,
-                        parent.n_actions + 1, last_event_after(parent, log))
+                        parent.n_actions + 1, last_event_after(parent, log, self.ct.rearms))
         if isinstance(op, WaitNext):
             res = self.waits.next(parent.time, parent.facts, parent.values, log, parent.active,
                                   self.config.goal_margin, self.ct.goal_comps)
@@ -277,7 +278,8 @@ class Search:
             return None
         t, facts, values, active = res
         return Node(t, facts, values, parent.ready, pi, op, log, False, active,
-                    n_actions=parent.n_actions, last_event=last_event_after(parent, log))
+                    n_actions=parent.n_actions,
+                    last_event=last_event_after(parent, log, self.ct.rearms))
 
     def _undoes(self, parent: Node, act: Operator, facts: int, values: Values) -> bool:
         """True when ``act`` right after ``parent``'s action restores the facts from before
@@ -307,7 +309,7 @@ class Search:
             facts, values, _ = kernel.advance(t0, facts, values, t, log, active)
             # a happening: events of that instant first, then the action (the validator's order)
             facts, values, active = kernel.settle(t, facts, values, log)
-            latest = log[-1][0] if log else -math.inf
+            latest = latest_event(log, self.ct.rearms)
             if latest <= t - gap + 1e-9:
                 return t, facts, values, active
             t0, t = t, ceil_grid(latest + gap, grid)
@@ -322,7 +324,7 @@ class Search:
         flow = self.kernel.flow_of(active, values)
         if not flow.moving:
             return False
-        dt = self.kernel.next_change(values, flow, self.kernel.comps_for(flow, "dynamic"), gap)
+        dt = self.kernel.next_change(values, flow, self.kernel.comps_for(flow, "spaced"), gap)
         if dt is None:
             return False
         self.stats["gap_pruned"] += 1
@@ -489,12 +491,13 @@ def initial_node(ct: CompiledTask, kernel: Kernel) -> Node:
     log: EventLog = []
     facts, values, active = kernel.settle(0.0, ct.init_facts, ct.init_values, log)
     return Node(0.0, facts, values, 0.0, -1, START, log, False, active,
-                last_event=log[-1][0] if log else -math.inf)
+                last_event=latest_event(log, ct.rearms))
 
 
-def last_event_after(parent: Node, log: EventLog) -> float:
-    """The latest event time on the path through ``parent`` and then ``log`` [s]."""
-    return max(parent.last_event, log[-1][0]) if log else parent.last_event
+def last_event_after(parent: Node, log: EventLog, quiet: frozenset[int] = frozenset()) -> float:
+    """The latest event time on the path through ``parent`` and then ``log`` [s], re-arms
+    (``quiet``) left out."""
+    return max(parent.last_event, latest_event(log, quiet))
 
 
 __all__ = ["Node", "Search", "SearchConfig", "SearchOutcome", "grid_after", "initial_node",

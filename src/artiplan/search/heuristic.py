@@ -41,6 +41,19 @@ from artiplan.semantics.compiled import (
 from artiplan.semantics.walks import Linear, conjuncts, linear
 
 
+def _unguarded(cond: Condition, guards: set[int]) -> Condition | None:
+    """``cond`` without its guard literals (``not f`` for a fact ``f`` its event adds, so that it
+    fires once until re-armed); ``None`` if it reads another fact. Relaxed, a guarded wrap is a
+    plain wrap."""
+    parts = [c for c in conjuncts(cond)
+             if not (isinstance(c, Not) and isinstance(c.operand, Atom)
+                     and c.operand.fact in guards)]
+    if any(isinstance(c, Atom) or isinstance(c, Not) and isinstance(c.operand, Atom)
+           for c in parts):
+        return None
+    return parts[0] if len(parts) == 1 else And(tuple(parts))
+
+
 @dataclass(frozen=True)
 class HeuristicConfig:
     """Weights of the heuristic.
@@ -237,10 +250,11 @@ class RateHeuristic(SideEffects):
         out: dict[int, list[Jump]] = {}
         for ev in self.ct.task.events:
             eff = ev.effect
-            if eff.add or eff.delete or eff.conditional or len(eff.numeric) != 1:
+            if eff.conditional or len(eff.numeric) != 1:
                 continue
             ne = eff.numeric[0]
-            trigger = condition_set(ev.precondition, ne.fluent)
+            numeric = _unguarded(ev.precondition, set(eff.add))
+            trigger = None if numeric is None else condition_set(numeric, ne.fluent)
             lin = linear(ne.expr)
             if trigger is None or lin is None or lin[0]:
                 continue

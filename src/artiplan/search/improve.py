@@ -167,7 +167,7 @@ def _probe(search: Search, horizon: Callable[[], float]) -> int:
         t, facts, values, active = res
         search.nodes.append(Node(t, facts, values, child.ready, len(search.nodes) - 1, WAIT_GOAL,
                                  log, False, active, n_actions=child.n_actions,
-                                 last_event=last_event_after(child, log)))
+                                 last_event=last_event_after(child, log, search.ct.rearms)))
         closing = search.closing(search.nodes[-1])
         if closing is not None:
             search.accept(SearchOutcome(len(search.nodes) - 1, search.nodes,

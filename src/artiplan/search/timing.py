@@ -125,7 +125,7 @@ class TimingProblem:
             facts, values, active = kernel.settle(at, facts, values, log)
         out.extend(margin_of(c, facts, values) for c in self.goal)
         gap = self.settings.event_gap
-        events = [te for te, _ in log]
+        events = [te for te, i in log if i not in self.ct.rearms]
         for at in times:  # the planner keeps events this far from actions (VAL's quirk)
             near = min((abs(te - at) for te in events), default=math.inf)
             out.append(min(1.0, near - gap))

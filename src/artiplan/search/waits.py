@@ -164,7 +164,7 @@ class Waits:
             flow = k.flow_of(act, values)
             if not flow.moving:
                 return None
-            dt = self._change(values, flow, self._watch(flow, cond_comps))
+            dt = self._change(values, flow, self._watch(flow, cond_comps, facts))
             if dt is None and not flow.exact and blind < self.BLIND_LOOKAHEADS \
                     and all(math.isfinite(v) for v in flow.values(values, self.LOOKAHEAD)):
                 dt, blind = self.LOOKAHEAD, blind + 1  # nothing within the look-ahead: on
@@ -192,10 +192,12 @@ class Waits:
         ct = self.kernel.ct
         return ct.tol.snapped(item.op, p[0]) if ct.strict else ct.tol.point(item.op, p[0])
 
-    def _watch(self, flow: Flow, cond_comps: frozenset[int]) -> tuple[int, ...]:
+    def _watch(self, flow: Flow, cond_comps: frozenset[int], facts: int) -> tuple[int, ...]:
+        """``cond``'s comparisons on changing fluents, and those that can change the dynamics
+        from ``facts`` (not re-arms: they change nothing a wait is for)."""
         items = self.kernel.ct.comps.items
         own = [c for c in cond_comps if items[c].fluents & flow.changing]
-        return tuple(sorted(set(own) | set(self.kernel.comps_for(flow, "dynamic"))))
+        return tuple(sorted(set(own) | set(self.kernel.comps_for(flow, "spaced", facts))))
 
     def _margin(self, t: float, facts: int, values: Values, cond: CondFn,
                 cond_comps: frozenset[int], log: EventLog, active: tuple[int, ...],
@@ -206,7 +208,7 @@ class Waits:
         flow = k.flow_of(active, values)
         if not flow.moving:
             return t, facts, values, active
-        dt = k.next_change(values, flow, self._watch(flow, cond_comps), 2.0 * margin)
+        dt = k.next_change(values, flow, self._watch(flow, cond_comps, facts), 2.0 * margin)
         step = margin if dt is None else min(margin, 0.5 * dt)
         end = round(math.floor((t + step) / self.grid) * self.grid, 9)
         if end <= t:

@@ -74,11 +74,11 @@ class ComparisonTable:
     """The task's distinct comparisons, numbered."""
 
     items: list[Comparison] = field(default_factory=list)
-    index: dict[tuple[str, str], int] = field(default_factory=dict)
+    index: dict[tuple[str, NumExpr], int] = field(default_factory=dict)
 
     def add(self, comp: _Comparison) -> int:
         p: NumExpr = BinOp("-", comp.left, comp.right)
-        key = (comp.op, repr(p))
+        key = (comp.op, p)  # structural: hashing the frozen tree is cheaper than its repr
         found = self.index.get(key)
         if found is None:
             lin = linear(p)
@@ -264,7 +264,8 @@ class CompiledTask:
     init_values: tuple[float, ...]
     #: comparisons that can change the dynamics (event and process preconditions)
     dynamic: frozenset[int]
-    #: comparisons watched while waiting: the dynamic ones, the goal's, action preconditions'
+    #: comparisons watched while waiting: the dynamic ones (not those only re-arms read), the
+    #: goal's, action preconditions'
     watched: frozenset[int]
     #: per fluent, the watched comparisons that read it
     fluent_comps: dict[int, tuple[int, ...]]
@@ -272,6 +273,13 @@ class CompiledTask:
     strict: bool = False
     #: invariants (read with ``tol`` at a point), with the comparisons each reads
     invariants: tuple[tuple[CondFn, frozenset[int]], ...] = ()
+    #: guard facts (mask): read only by events, as "fired once until re-armed" (see
+    #: :func:`guard_facts`); the planner leaves them out of its duplicate key
+    guards: int = 0
+    #: events that only re-arm guards: nothing else reads what they change
+    rearms: frozenset[int] = frozenset()
+    #: dynamic comparisons read by events other than re-arms (the ones actions keep clear of)
+    spaced: frozenset[int] = frozenset()
 
     @property
     def n_fluents(self) -> int:
@@ -289,6 +297,49 @@ def _operator(i: int, op: GroundAction, comps: ComparisonTable, tol: Tolerances,
     _compile_on_first_call(out, "effect", apply, "_eff")
     _compile_on_first_call(out, "parts", split, "_parts")
     return out
+
+
+def guard_facts(task: Task) -> tuple[int, frozenset[int]]:
+    """Guard facts (mask) and the events that only re-arm them (cached per task).
+
+    A guard ``g`` is read by no action, process, invariant or goal; every event that requires
+    ``not g`` adds ``g`` (it fires once until re-armed), and every event that requires ``g``
+    only deletes guards (a re-arm). The wrap flags of artiplan's encodings are guards: under
+    exact semantics they never change what happens, they make VAL see a wrap falsify its
+    precondition (docs/encodings.md, "Wrap-around").
+    """
+    return per_task(task, "guards", lambda: _guard_facts(task))
+
+
+def _guard_facts(task: Task) -> tuple[int, frozenset[int]]:
+    others: set[int] = set(condition_parts(task.goal)[0])
+    for a in task.actions:
+        others |= condition_parts(a.precondition)[0]
+    for p in task.processes:
+        others |= condition_parts(p.precondition)[0]
+    for c in task.invariants:
+        others |= condition_parts(c)[0]
+    candidates: set[int] = set()
+    for e in task.events:
+        forb = (fact_literals(e.precondition) or (0, 0))[1]
+        candidates |= {f for f in e.effect.add if forb >> f & 1}
+    candidates -= others
+    changed = True
+    while changed:  # dropping a candidate can disqualify a re-arm that deletes it
+        changed, rearms = False, set()
+        for i, e in enumerate(task.events):
+            eff = e.effect
+            if eff.delete and not (eff.add or eff.numeric or eff.conditional) \
+                    and set(eff.delete) <= candidates:
+                rearms.add(i)  # a re-arm: it may read guards anywhere in its precondition
+                continue
+            forb = (fact_literals(e.precondition) or (0, 0))[1]
+            bad = {f for f in condition_parts(e.precondition)[0] & candidates
+                   if not (forb >> f & 1 and f in eff.add)}
+            if bad:
+                candidates -= bad
+                changed = True
+    return sum(1 << f for f in candidates), frozenset(rearms)
 
 
 def _unset(facts: int, values: tuple[float, ...]) -> Any:
@@ -330,9 +381,14 @@ def _compile(task: Task, tol: Tolerances, strict: bool) -> CompiledTask:
     invariants = tuple(compile_condition(c, comps, tol) for c in task.invariants)
     dynamic = frozenset().union(*(e.pre_comps for e in events), *(p.pre_comps for p in processes),
                                 *(used for _, used in invariants))
-    watched = dynamic | goal_comps | frozenset().union(*(a.pre_comps for a in actions))
+    guards, rearms = guard_facts(task)
+    spaced = frozenset().union(*(e.pre_comps for i, e in enumerate(events) if i not in rearms),
+                               *(p.pre_comps for p in processes),
+                               *(used for _, used in invariants))
+    # a re-arm changes nothing a wait could be for: its comparisons are not watched
+    watched = spaced | goal_comps | frozenset().union(*(a.pre_comps for a in actions))
     fluent_comps: dict[int, list[int]] = {}
-    for cid in sorted(watched):
+    for cid in sorted(watched | dynamic):
         for f in comps.items[cid].fluents:
             fluent_comps.setdefault(f, []).append(cid)
     init_values = tuple(float("nan") if v is None else float(v) for v in task.init_values)
@@ -341,5 +397,5 @@ def _compile(task: Task, tol: Tolerances, strict: bool) -> CompiledTask:
         goal=goal, goal_comps=goal_comps, init_facts=sum(1 << f for f in task.init_facts),
         init_values=init_values, dynamic=dynamic, watched=watched,
         fluent_comps={f: tuple(c) for f, c in fluent_comps.items()}, strict=strict,
-        invariants=invariants,
+        invariants=invariants, guards=guards, rearms=rearms, spaced=spaced,
     )

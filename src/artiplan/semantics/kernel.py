@@ -43,6 +43,15 @@ Values = tuple[float, ...]
 EventLog = list[tuple[float, int]]
 
 
+def latest_event(log: EventLog, quiet: frozenset[int], default: float = -math.inf) -> float:
+    """Time [s] of the latest event in ``log`` that is not in ``quiet`` (re-arms, which an
+    action may come close to), or ``default``."""
+    for t, i in reversed(log):
+        if i not in quiet:
+            return t
+    return default
+
+
 class EventError(InvalidPlanError):
     """An event triggered twice at one time point (VAL: "Attempt to trigger event twice")."""
 
@@ -105,7 +114,7 @@ class Kernel:
         self._flows: dict[tuple[int, ...], Flow] = {}
         self._shapes: dict[tuple[int, ...], Shape] = {}
         self._last_flow: tuple[tuple[int, ...], Values, Flow] | None = None
-        self._comp_cache: dict[tuple[frozenset[int], str], tuple[int, ...]] = {}
+        self._comp_cache: dict[tuple[frozenset[int], str, int | None], tuple[int, ...]] = {}
         self._split_cache: dict[tuple[int, ...], tuple[_Rows | None, tuple[int, ...]]] = {}
         items = ct.comps.items
         self._singles = _Rows.of([c for c, it in enumerate(items) if it.single is not None],
@@ -121,6 +130,23 @@ class Kernel:
                 self._events_of.setdefault(c, []).append(e.index)
         self._event_reads = [frozenset().union(*(items[c].fluents for c in e.pre_comps))
                              for e in ct.events]
+        # The fact literals (required, forbidden) of whatever reads each dynamic comparison; a
+        # comparison no enabled reader has cannot change the dynamics until facts change,
+        # which happens only at a happening (a guarded wrap, a flag event that fired).
+        readers: dict[int, set[tuple[int, int]]] = {}
+        lits = [(e.pre_comps, e.req, e.forb) for e in ct.events]
+        lits += [(p.pre_comps, p.req, p.forb) for p in ct.processes]
+        for comps, req, forb in lits:
+            for c in comps:
+                readers.setdefault(c, set()).add((req, forb))
+        for _, used in ct.invariants:
+            for c in used:
+                readers.setdefault(c, set()).add((0, 0))
+        self._readers = {c: tuple(r) for c, r in readers.items()}
+        self._reader_mask = 0
+        for rs in self._readers.values():
+            for req, forb in rs:
+                self._reader_mask |= req | forb
         self._comp_ids: dict[int, int] = {}
         self._near_memo: tuple[Values, frozenset[int]] | None = None
 
@@ -330,16 +356,25 @@ class Kernel:
         return (facts & ~dele) | add, tuple(out)
 
     # ------------------------------------------------------------------------ passing time
-    def comps_for(self, flow: Flow, kind: str) -> tuple[int, ...]:
-        """Comparisons of ``kind`` (``watched`` or ``dynamic``) that read a changing fluent."""
-        key = (flow.changing, kind)
+    def comps_for(self, flow: Flow, kind: str, facts: int | None = None) -> tuple[int, ...]:
+        """Comparisons of ``kind`` (``watched``, ``dynamic`` or ``spaced``: dynamic, not only a
+        re-arm's) that read a changing fluent; with ``facts``, only the dynamic ones that an
+        event or process enabled by those facts reads."""
+        live = None if facts is None or kind == "watched" else facts & self._reader_mask
+        key = (flow.changing, kind, live)
         found = self._comp_cache.get(key)
         if found is None:
-            pool = self.ct.watched if kind == "watched" else self.ct.dynamic
+            pool = {"watched": self.ct.watched, "dynamic": self.ct.dynamic,
+                    "spaced": self.ct.spaced}[kind]
             ids: set[int] = set()
             for f in flow.changing:
                 ids.update(c for c in self.ct.fluent_comps.get(f, ()) if c in pool)
-            found = self._comp_cache[key] = tuple(sorted(ids))
+            if live is not None:
+                ids = {c for c in ids if any(live & req == req and not live & forb
+                                             for req, forb in self._readers.get(c, ((0, 0),)))}
+            found = tuple(sorted(ids))
+            if len(self._comp_cache) < 200_000:
+                self._comp_cache[key] = found
         return found
 
     def next_change(self, values: Values, flow: Flow, comps: tuple[int, ...],
@@ -402,7 +437,7 @@ class Kernel:
                 if segments is not None:
                     segments.append(Segment(t, until, values, flow))
                 return facts, values, act
-            dt = self.next_change(values, flow, self.comps_for(flow, "dynamic"), until - t)
+            dt = self.next_change(values, flow, self.comps_for(flow, "dynamic", facts), until - t)
             if dt is None or t + dt >= until:
                 if segments is not None:
                     segments.append(Segment(t, until, values, flow))
@@ -506,22 +541,34 @@ def _quadratic_roots(p0: float, p1: float, p2: float) -> tuple[float, ...]:
     return (q / p2, p0 / q) if q != 0.0 else (q / p2,)
 
 
-def _buckets(ops: list[tuple[int, int]]) -> tuple[list[tuple[int, list[int]]], list[int]]:
-    """Index (operator, required mask) by one required fact, so only those whose key fact
-    holds are checked."""
+Buckets = tuple[int, dict[int, list[int]]]
+
+
+def _buckets(ops: list[tuple[int, int]]) -> tuple[Buckets, list[int]]:
+    """Index (operator, required mask) by one required fact (its lowest), so only those whose
+    key fact holds are checked: (mask of the key facts, key bit -> operators), and the
+    operators that require no fact."""
     buckets: dict[int, list[int]] = {}
     always: list[int] = []
     for index, req in ops:
         if req:
-            buckets.setdefault((req & -req).bit_length() - 1, []).append(index)
+            buckets.setdefault(req & -req, []).append(index)
         else:
             always.append(index)
-    return [(1 << k, v) for k, v in sorted(buckets.items())], always
+    mask = 0
+    for bit in buckets:
+        mask |= bit
+    return (mask, buckets), always
 
 
-def _candidates(facts: int, buckets: list[tuple[int, list[int]]], always: list[int]) -> list[int]:
+def _candidates(facts: int, buckets: Buckets, always: list[int]) -> list[int]:
+    """The operators whose key fact holds in ``facts``, and those without one; walks the set
+    key bits only (a state holds few of the many guard and flag facts)."""
     out = list(always)
-    for bit, ids in buckets:
-        if facts & bit:
-            out.extend(ids)
+    mask, by_bit = buckets
+    live = facts & mask
+    while live:
+        bit = live & -live
+        out.extend(by_bit[bit])
+        live ^= bit
     return out

@@ -13,7 +13,8 @@ from enum import Enum
 from artiplan.errors import ExitCode
 from artiplan.pddl.task import Task
 from artiplan.records import dataclass, field, names
-from artiplan.semantics.plan import Plan
+from artiplan.semantics.compiled import guard_facts
+from artiplan.semantics.plan import Plan, TimedEvent
 from artiplan.semantics.trajectory import Trajectory
 from artiplan.semantics.walks import robustness
 
@@ -81,12 +82,16 @@ class Margins:
 
 
 def margins_of(task: Task, plan: Plan, trajectory: Trajectory, event_gap: float) -> Margins:
-    """The margins of ``plan`` along its ``trajectory``; ``event_gap`` [s]: the gap aimed at."""
-    gaps = [abs(a.time - e.time) for a in plan.actions for e in trajectory.events]
+    """The margins of ``plan`` along its ``trajectory``; ``event_gap`` [s]: the gap aimed at.
+    Re-arms (events that only clear guard facts, :func:`guard_facts`) are left out: nothing
+    reads what they change, so an action or another object's event may come close."""
+    quiet = {task.events[i].signature for i in guard_facts(task)[1]}
+    events = [e for e in trajectory.events if e.signature not in quiet]
+    gaps = [abs(a.time - e.time) for a in plan.actions for e in events]
     gap = min(gaps) if gaps else None
     final = trajectory.final_state
     margin = robustness(task.goal, final.facts, final.values) if final is not None else None
-    pair = _object_event_gap(trajectory)
+    pair = _object_event_gap(events)
     notes = []
     if gap is not None and gap < event_gap - 1e-9:
         notes.append(f"an action {gap:.6f} s from an event (wanted {event_gap:g} s)")
@@ -96,26 +101,26 @@ def margins_of(task: Task, plan: Plan, trajectory: Trajectory, event_gap: float)
                    None if margin is None or math.isinf(margin) else round(margin, 6),
                    not notes, "; ".join(notes),
                    None if pair is None else round(pair[0], 6),
-                   _coincident(plan, trajectory))
+                   _coincident(plan, events))
 
 
-def _coincident(plan: Plan, trajectory: Trajectory) -> tuple[float, ...]:
+def _coincident(plan: Plan, events: list[TimedEvent]) -> tuple[float, ...]:
     """Instants (not an action's) at which events fired for several first arguments."""
     actions = {round(a.time, 6) for a in plan.actions}
     seen: dict[float, set[str]] = {}
-    for e in trajectory.events:
+    for e in events:
         t = round(e.time, 6)
         if e.args and t not in actions and not e.after_actions:
             seen.setdefault(t, set()).add(e.args[0])
     return tuple(sorted(t for t, objs in seen.items() if len(objs) > 1))
 
 
-def _object_event_gap(trajectory: Trajectory) -> tuple[float, str] | None:
+def _object_event_gap(events: list[TimedEvent]) -> tuple[float, str] | None:
     """The smallest time between consecutive events of one object at distinct times [s], and
     the object."""
     last: dict[str, float] = {}
     best: tuple[float, str] | None = None
-    for e in sorted(trajectory.events, key=lambda e: e.time):
+    for e in sorted(events, key=lambda e: e.time):
         if not e.args:
             continue
         obj = e.args[0]
