@@ -30,6 +30,7 @@ from artiplan.errors import InvalidPlanError
 from artiplan.pddl.task import Atom
 from artiplan.records import dataclass, field
 from artiplan.search.heuristic import Evaluation, Heuristic
+from artiplan.search.invariants import Threats
 from artiplan.search.waits import Waits, ceil_grid, grid_after
 from artiplan.semantics.compiled import CompiledTask, Operator
 from artiplan.semantics.kernel import EventLog, Kernel, Values
@@ -43,6 +44,14 @@ class Apply:
     the last event)."""
 
     action: int
+
+
+class Rescue(Apply):
+    """Apply action ``action`` to save an invariant the running processes are about to
+    break (:mod:`artiplan.search.invariants`): a plan cannot do without it, so it does not
+    count in the search's ``g`` (``g_weight``)."""
+
+    __slots__ = ()
 
 
 @dataclass(frozen=True, slots=True)
@@ -85,7 +94,8 @@ class WaitDelta:
 @dataclass(frozen=True, slots=True)
 class WaitHold:
     """Wait ``seconds`` [s]: as long as the heuristic's motion profile keeps the controls as
-    they are (a car accelerating until it must cruise or brake)."""
+    they are (a car accelerating until it must cruise or brake), or until just before the
+    running processes would break an invariant (:mod:`artiplan.search.invariants`)."""
 
     seconds: float
 
@@ -152,6 +162,7 @@ class Node:
     after: int = 0  # events[after:] were triggered by the node's action
     n_actions: int = 0  # actions on the path from the initial node
     last_event: float = -math.inf  # time of the latest event on the path [s]
+    forced: int = 0  # rescues among the actions on the path (not counted in g)
 
 
 @dataclass
@@ -177,7 +188,10 @@ class Search:
         repair: Callable[[list[int], list[float]], bool] | None = None,
     ) -> None:
         self.ct, self.kernel, self.h, self.config = ct, kernel, heuristic, config
-        self.waits = Waits(kernel)
+        # invariants the running processes threaten: wait to just before, then the rescues
+        lead = 2.0 * config.event_gap + 2.0 * config.epsilon
+        self.threats = Threats(ct, kernel, lead) if ct.invariants else None
+        self.waits = Waits(kernel, lead if ct.invariants else 0.0)
         self.check_limits = check_limits
         self.accept = accept
         self.prune = prune  # nodes it returns True for are dropped (the improvement's bound)
@@ -243,7 +257,8 @@ class Search:
                 return None
             ready = round(t + self.config.epsilon, 9)
             return Node(t, facts, values, ready, pi, op, log, True, active, after,
-                        parent.n_actions + 1, last_event_after(parent, log))
+                        parent.n_actions + 1, last_event_after(parent, log),
+                        parent.forced + isinstance(op, Rescue))
         if isinstance(op, WaitNext):
             res = self.waits.next(parent.time, parent.facts, parent.values, log, parent.active,
                                   self.config.goal_margin, self.ct.goal_comps)
@@ -277,7 +292,8 @@ class Search:
             return None
         t, facts, values, active = res
         return Node(t, facts, values, parent.ready, pi, op, log, False, active,
-                    n_actions=parent.n_actions, last_event=last_event_after(parent, log))
+                    n_actions=parent.n_actions, last_event=last_event_after(parent, log),
+                    forced=parent.forced)
 
     def _undoes(self, parent: Node, act: Operator, facts: int, values: Values) -> bool:
         """True when ``act`` right after ``parent``'s action restores the facts from before
@@ -408,7 +424,7 @@ class Search:
             if ev.h < best_h:
                 best_h = ev.h
                 boost += self.config.boost
-            prio = ev.h + self.config.g_weight * node.n_actions
+            prio = ev.h + self.config.g_weight * (node.n_actions - node.forced)
             moving = self.kernel.flow_of(active, node.values).moving
             for op2, pref in self._operators(node, ev, moving):
                 entry = (prio, next(self.counter), ni, op2)
@@ -464,7 +480,16 @@ class Search:
                 ops.append((WAIT_GOAL, True))
             ops.extend((self.group_waits[gi], True) for gi in ev.waits)
         pref = set(ev.preferred)
+        if self.threats is not None and moving:
+            seconds, saving = self.threats.advice(node.time, node.facts, node.values,
+                                                  node.active)
+            ops.extend((Rescue(i), True) for i in saving)
+            if seconds > 0.0:
+                ops.append((WaitHold(seconds), True))
+            pref.update(saving)
         for i in ev.preferred:
+            if i in pref and self.threats is not None and (Rescue(i), True) in ops:
+                continue
             act = self.ct.actions[i]
             if moving and act.pre_comps and not act.pre(node.facts, node.values):
                 ops.append((self.action_waits[i], True))  # its numbers are not there yet
