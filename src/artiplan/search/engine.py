@@ -144,7 +144,7 @@ class Search:
         goal_facts = {c.fact for c in conjuncts(ct.task.goal) if isinstance(c, Atom)}
         self.achievers = [a.index for a in ct.actions
                           if goal_facts & set(ct.task.actions[a.index].effect.add)]
-        self.tried: dict[tuple[int, ...], int] = {}  # repairs per action sequence
+        self.tried: dict[tuple[float, ...], int] = {}  # skeletons repaired (actions, times)
         self.repaired = False
         self.noops = [a.index for a in ct.actions if a.noop]
         # the operators, built once (heap entries hold them)
@@ -381,15 +381,15 @@ class Search:
         """Try a timing repair of the path to ``parent`` ended by goal achiever ``a``, whose
         numbers the running processes bring close but miss (its wait found no time). The
         achiever goes where its comparisons next change (the closest approach, typically);
-        each action sequence is tried twice at most, ``max_repairs`` in all."""
+        each skeleton (actions and times) is tried once, ``max_repairs`` in all."""
         assert self.repair is not None
         if self.stats["repairs"] >= self.config.max_repairs:
             return
         actions, times = self.path_actions(pi)
-        key = (*actions, a)
-        if self.tried.get(key, 0) >= 2:
-            return
-        self.tried[key] = self.tried.get(key, 0) + 1
+        key = (*actions, a, *(round(t, 3) for t in times))
+        if key in self.tried:
+            return  # the same skeleton from another node of the path: the same repair
+        self.tried[key] = 1
         flow = self.kernel.flow_of(parent.active, parent.values)
         items = self.ct.comps.items
         comps = tuple(sorted(c for c in self.ct.actions[a].pre_comps
