@@ -107,6 +107,7 @@ class Node:
     n_actions: int = 0  # actions on the path from the initial node
     last_event: float = -math.inf  # time of the latest event on the path [s]
     forced: int = 0  # rescues among the actions on the path (not counted in g)
+    at_threat: bool = False  # an invariant fails within 2 leads (set when expanded)
 
 
 @dataclass
@@ -425,8 +426,10 @@ class Search:
             ops.extend((self.group_waits[gi], True) for gi in ev.waits)
         pref = set(ev.preferred)
         if self.threats is not None and moving:
-            seconds, saving = self.threats.advice(node.time, node.facts, node.values,
-                                                  node.active)
+            # rescues after a wait, or continuing a rescue (an enabler, then the rescue)
+            rescue = not node.by_action or self.nodes[node.parent].at_threat
+            seconds, saving, node.at_threat = self.threats.advice(
+                node.time, node.facts, node.values, node.active, rescue)
             ops.extend((Rescue(i), True) for i in saving)
             if seconds > 0.0:
                 ops.append((WaitHold(seconds), True))

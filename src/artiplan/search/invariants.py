@@ -27,6 +27,7 @@ import math
 
 from artiplan.search.waits import floor_grid
 from artiplan.semantics.compiled import CompiledTask, Operator
+from artiplan.semantics.flow import STILL
 from artiplan.semantics.kernel import Kernel, Values
 
 
@@ -47,7 +48,7 @@ class Threats:
         items = k.ct.comps.items
         best, which = math.inf, []
         for c in self.comps:
-            if not items[c].fluents & flow.changing:
+            if not items[c].fluents & flow.changing or not self._holds(c, values):
                 continue
             dt = k.next_change(values, flow, (c,))
             if dt is None or not math.isfinite(dt):
@@ -58,24 +59,34 @@ class Threats:
                 which.append(c)
         return best, tuple(which)
 
-    def advice(self, t: float, facts: int, values: Values,
-               active: tuple[int, ...]) -> tuple[float, list[int]]:
+    def advice(self, t: float, facts: int, values: Values, active: tuple[int, ...],
+               rescue: bool = True) -> tuple[float, list[int], bool]:
         """What the search should offer at a state at ``t`` [s]: (seconds to wait, to
-        ``lead`` before the next threat; 0 if none or closer), and the rescues and enablers
-        when the threat is that close already."""
+        ``lead`` before the next threat; 0 if none or closer), the rescues and enablers when
+        the threat is that close already and ``rescue`` (the search's call: not after an
+        action that made the threat itself, a pour started into an empty tank, whose rescue
+        would only undo it), and whether the threat is that close."""
         dt, comps = self.first(values, active)
         if not comps:
-            return 0.0, []
+            return 0.0, [], False
         if dt <= 2.0 * self.lead:
-            return 0.0, self.rescues(facts, values, comps, dt)
+            return 0.0, self.rescues(facts, values, comps, dt) if rescue else [], True
         grid = self.ct.tol.grid
         end = floor_grid(t + dt - self.lead, grid)
-        return (round(end - t, 9) if end > t + grid else 0.0), []
+        return (round(end - t, 9) if end > t + grid else 0.0), [], False
+
+    def _holds(self, cid: int, values: Values) -> bool:
+        """Truth of comparison ``cid`` at ``values`` (read as the kernel reads invariants)."""
+        item = self.ct.comps.items[cid]
+        p = STILL.poly(item, values)
+        return p is not None and self.ct.tol.point(item.op, p[0])
 
     def _saves(self, act: Operator, facts: int, values: Values, comps: tuple[int, ...],
                dt: float) -> bool:
         """True when applying ``act`` (its effect only) leaves no comparison of ``comps``
-        failing within ``dt + lead`` [s]."""
+        failing within ``dt + lead`` [s], and no invariant comparison failing within two
+        leads (a pour started from a nearly empty tank saves the generator's fuel only to
+        threaten the tank's at once)."""
         f2, v2 = act.effect(facts, values)
         active = self.kernel.active(f2, v2)
         flow = self.kernel.flow_of(active, v2)
@@ -86,7 +97,7 @@ class Threats:
             dt2 = self.kernel.next_change(v2, flow, (c,))
             if dt2 is not None and dt2 <= dt + self.lead:
                 return False
-        return True
+        return self.first(v2, active)[0] > 2.0 * self.lead
 
     def rescues(self, facts: int, values: Values, comps: tuple[int, ...],
                 dt: float) -> list[int]:
