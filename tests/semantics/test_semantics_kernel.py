@@ -151,6 +151,23 @@ def test_non_polynomial_flow_brackets_its_crossings() -> None:
     assert flow.error < 1e-8
 
 
+def test_a_numeric_flow_is_integrated_once_per_start_values_and_answers_as_a_new_one() -> None:
+    # x' = x from two start values: asking again with equal values (a new tuple) gets the
+    # same flow back, with the answers of a flow made afresh
+    procs = (GroundProcess("grow", (), TRUE, (ContinuousEffect(0, FluentRef(0)),)),)
+    task = Task("d", "p", (), ("(x)",), frozenset(), (1.0,), TRUE, (), (), procs)
+    kernel, facts, values, active = _settled(task)
+    first = kernel.flow_of(active, values)
+    other = kernel.flow_of(active, (2.0,))
+    again = kernel.flow_of(active, tuple(list(values)))
+    assert again is first and other is not first
+    fresh = Kernel(kernel.ct).flow_of(active, values)
+    assert fresh is not first
+    for dt in (0.3, 1.7, 0.9):
+        assert again.values(values, dt) == fresh.values(values, dt)
+    assert other.values((2.0,), 1.0)[0] == pytest.approx(2.0 * math.e, rel=1e-9)
+
+
 def test_numeric_fallback_finds_a_crossing_between_two_samples() -> None:
     # x = sin-like motion: x' = y, y' = -x (a cycle: numeric). From (0, 1): x = sin t. The
     # condition x > 0.999999 holds only in a 2.8 ms window around pi/2: a touch a fixed scan

@@ -19,10 +19,11 @@ from pathlib import Path
 from artiplan.errors import InvalidPlanError, UsageError
 from artiplan.pddl.task import Task
 from artiplan.records import dataclass, names, replace
-from artiplan.search.engine import Apply, Search, SearchConfig, SearchOutcome, initial_node
+from artiplan.search.engine import Search, SearchConfig, SearchOutcome, initial_node
 from artiplan.search.heuristic import Heuristic, HeuristicConfig, RateHeuristic
 from artiplan.search.improve import improve
 from artiplan.search.limits import LimitReached, Limits
+from artiplan.search.ops import Apply
 from artiplan.search.proofs import prove_unsolvable
 from artiplan.semantics.compiled import CompiledTask, compile_task
 from artiplan.semantics.kernel import Kernel

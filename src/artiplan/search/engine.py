@@ -30,74 +30,28 @@ from artiplan.errors import InvalidPlanError
 from artiplan.pddl.task import Atom
 from artiplan.records import dataclass, field
 from artiplan.search.heuristic import Evaluation, Heuristic
+from artiplan.search.invariants import Threats
+from artiplan.search.ops import (
+    START,
+    WAIT_BEFORE,
+    WAIT_DELTA,
+    WAIT_GOAL,
+    WAIT_NEXT,
+    Apply,
+    Op,
+    Rescue,
+    WaitBefore,
+    WaitDelta,
+    WaitFor,
+    WaitGroup,
+    WaitHold,
+    WaitNext,
+)
 from artiplan.search.waits import Waits, ceil_grid, grid_after
 from artiplan.semantics.compiled import CompiledTask, Operator
 from artiplan.semantics.kernel import EventLog, Kernel, Values, latest_event
 from artiplan.semantics.walks import conjuncts
 from artiplan.tolerances import VAL_EVENT_WINDOW
-
-
-@dataclass(frozen=True, slots=True)
-class Apply:
-    """Apply action ``action`` now (``epsilon`` after the previous one, ``event_gap`` after
-    the last event)."""
-
-    action: int
-
-
-@dataclass(frozen=True, slots=True)
-class WaitNext:
-    """Wait until just after the next time a watched condition may change."""
-
-
-@dataclass(frozen=True, slots=True)
-class WaitGroup:
-    """Wait until goal group ``group`` holds (plus the goal margin)."""
-
-    group: int
-
-
-@dataclass(frozen=True, slots=True)
-class WaitGoal:
-    """Wait until the whole goal holds (plus the goal margin)."""
-
-
-@dataclass(frozen=True, slots=True)
-class WaitFor:
-    """Wait until action ``action``'s precondition holds (its facts hold, a number does not
-    yet: a durative action's end, a threshold)."""
-
-    action: int
-
-
-@dataclass(frozen=True, slots=True)
-class WaitBefore:
-    """Wait until just before a condition that holds now fails (an action's precondition,
-    an invariant): the last moment to act (a duration's upper bound, a capacity)."""
-
-
-@dataclass(frozen=True, slots=True)
-class WaitDelta:
-    """Wait until the next multiple of the search's ``delta`` [s]: a free choice of time that
-    no condition marks (when to brake so that a car stops in a window)."""
-
-
-@dataclass(frozen=True, slots=True)
-class WaitHold:
-    """Wait ``seconds`` [s]: as long as the heuristic's motion profile keeps the controls as
-    they are (a car accelerating until it must cruise or brake)."""
-
-    seconds: float
-
-
-@dataclass(frozen=True, slots=True)
-class Start:
-    """How the initial node is reached."""
-
-
-Op = Apply | WaitNext | WaitGroup | WaitGoal | WaitFor | WaitBefore | WaitDelta | WaitHold | Start
-WAIT_NEXT, WAIT_GOAL, WAIT_BEFORE, WAIT_DELTA, START = (WaitNext(), WaitGoal(), WaitBefore(),
-                                                       WaitDelta(), Start())
 
 
 @dataclass(frozen=True)
@@ -152,6 +106,8 @@ class Node:
     after: int = 0  # events[after:] were triggered by the node's action
     n_actions: int = 0  # actions on the path from the initial node
     last_event: float = -math.inf  # time of the latest event on the path [s]
+    forced: int = 0  # rescues among the actions on the path (not counted in g)
+    at_threat: bool = False  # an invariant fails within 2 leads (set when expanded)
 
 
 @dataclass
@@ -177,7 +133,10 @@ class Search:
         repair: Callable[[list[int], list[float]], bool] | None = None,
     ) -> None:
         self.ct, self.kernel, self.h, self.config = ct, kernel, heuristic, config
-        self.waits = Waits(kernel)
+        # invariants the running processes threaten: wait to just before, then the rescues
+        lead = 2.0 * config.event_gap + 2.0 * config.epsilon
+        self.threats = Threats(ct, kernel, lead) if ct.invariants else None
+        self.waits = Waits(kernel, lead if ct.invariants else 0.0)
         self.check_limits = check_limits
         self.accept = accept
         self.prune = prune  # nodes it returns True for are dropped (the improvement's bound)
@@ -186,7 +145,7 @@ class Search:
         goal_facts = {c.fact for c in conjuncts(ct.task.goal) if isinstance(c, Atom)}
         self.achievers = [a.index for a in ct.actions
                           if goal_facts & set(ct.task.actions[a.index].effect.add)]
-        self.tried: dict[tuple[int, ...], int] = {}  # repairs per action sequence
+        self.tried: dict[tuple[float, ...], int] = {}  # skeletons repaired (actions, times)
         self.repaired = False
         self.noops = [a.index for a in ct.actions if a.noop]
         # the operators, built once (heap entries hold them)
@@ -244,7 +203,8 @@ class Search:
                 return None
             ready = round(t + self.config.epsilon, 9)
             return Node(t, facts, values, ready, pi, op, log, True, active, after,
-                        parent.n_actions + 1, last_event_after(parent, log, self.ct.rearms))
+                        parent.n_actions + 1, last_event_after(parent, log, self.ct.rearms),
+                        parent.forced + isinstance(op, Rescue))
         if isinstance(op, WaitNext):
             res = self.waits.next(parent.time, parent.facts, parent.values, log, parent.active,
                                   self.config.goal_margin, self.ct.goal_comps)
@@ -279,7 +239,7 @@ class Search:
         t, facts, values, active = res
         return Node(t, facts, values, parent.ready, pi, op, log, False, active,
                     n_actions=parent.n_actions,
-                    last_event=last_event_after(parent, log, self.ct.rearms))
+                    last_event=last_event_after(parent, log, self.ct.rearms), forced=parent.forced)
 
     def _undoes(self, parent: Node, act: Operator, facts: int, values: Values) -> bool:
         """True when ``act`` right after ``parent``'s action restores the facts from before
@@ -410,7 +370,7 @@ class Search:
             if ev.h < best_h:
                 best_h = ev.h
                 boost += self.config.boost
-            prio = ev.h + self.config.g_weight * node.n_actions
+            prio = ev.h + self.config.g_weight * (node.n_actions - node.forced)
             moving = self.kernel.flow_of(active, node.values).moving
             for op2, pref in self._operators(node, ev, moving):
                 entry = (prio, next(self.counter), ni, op2)
@@ -423,15 +383,15 @@ class Search:
         """Try a timing repair of the path to ``parent`` ended by goal achiever ``a``, whose
         numbers the running processes bring close but miss (its wait found no time). The
         achiever goes where its comparisons next change (the closest approach, typically);
-        each action sequence is tried twice at most, ``max_repairs`` in all."""
+        each skeleton (actions and times) is tried once, ``max_repairs`` in all."""
         assert self.repair is not None
         if self.stats["repairs"] >= self.config.max_repairs:
             return
         actions, times = self.path_actions(pi)
-        key = (*actions, a)
-        if self.tried.get(key, 0) >= 2:
-            return
-        self.tried[key] = self.tried.get(key, 0) + 1
+        key = (*actions, a, *(round(t, 3) for t in times))
+        if key in self.tried:
+            return  # the same skeleton from another node of the path: the same repair
+        self.tried[key] = 1
         flow = self.kernel.flow_of(parent.active, parent.values)
         items = self.ct.comps.items
         comps = tuple(sorted(c for c in self.ct.actions[a].pre_comps
@@ -466,7 +426,18 @@ class Search:
                 ops.append((WAIT_GOAL, True))
             ops.extend((self.group_waits[gi], True) for gi in ev.waits)
         pref = set(ev.preferred)
+        if self.threats is not None and moving:
+            # rescues after a wait, or continuing a rescue (an enabler, then the rescue)
+            rescue = not node.by_action or self.nodes[node.parent].at_threat
+            seconds, saving, node.at_threat = self.threats.advice(
+                node.time, node.facts, node.values, node.active, rescue)
+            ops.extend((Rescue(i), True) for i in saving)
+            if seconds > 0.0:
+                ops.append((WaitHold(seconds), True))
+            pref.update(saving)
         for i in ev.preferred:
+            if i in pref and self.threats is not None and (Rescue(i), True) in ops:
+                continue
             act = self.ct.actions[i]
             if moving and act.pre_comps and not act.pre(node.facts, node.values):
                 ops.append((self.action_waits[i], True))  # its numbers are not there yet

@@ -16,7 +16,6 @@ from collections.abc import Callable
 from artiplan.errors import InvalidPlanError
 from artiplan.records import dataclass
 from artiplan.search.engine import (
-    WAIT_GOAL,
     Node,
     Search,
     SearchConfig,
@@ -26,6 +25,7 @@ from artiplan.search.engine import (
 )
 from artiplan.search.heuristic import Heuristic, HeuristicConfig, RateHeuristic
 from artiplan.search.limits import LimitReached, Limits
+from artiplan.search.ops import WAIT_GOAL
 from artiplan.semantics.compiled import CompiledTask
 from artiplan.semantics.kernel import EventLog, Kernel
 from artiplan.semantics.plan import Plan

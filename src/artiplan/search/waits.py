@@ -44,9 +44,12 @@ class Waits:
     #: longer wait is made of several (each stop is then a state like any other).
     LOOKAHEAD = 60.0
 
-    def __init__(self, kernel: Kernel) -> None:
+    def __init__(self, kernel: Kernel, lead: float = 0.0) -> None:
         self.kernel = kernel
         self.grid = kernel.ct.tol.grid
+        #: A wait that would break an invariant stops this long [s] before (time for two
+        #: actions that save it, ``event_gap`` apart), else at the last grid time before.
+        self.lead = lead
 
     #: How many look-aheads in a row without a change :meth:`until` takes before giving up.
     BLIND_LOOKAHEADS = 5
@@ -85,13 +88,16 @@ class Waits:
 
     def _advance(self, t: float, facts: int, values: Values, until: float, log: EventLog,
                  active: tuple[int, ...]) -> tuple[float, int, Values, tuple[int, ...]]:
-        """Let time pass to ``until`` [s]; if an invariant would fail on the way, stop at the
-        last grid time before (raise if that is no later than ``t`` + a grid step)."""
+        """Let time pass to ``until`` [s]; if an invariant would fail on the way, stop
+        :attr:`lead` before (or at the last grid time before; raise if that is no later than
+        ``t`` + a grid step)."""
         trial: EventLog = []
         try:
             out = self.kernel.advance(t, facts, values, until, trial, active)
         except InvariantError as exc:
-            end = floor_grid(exc.time, self.grid)
+            end = floor_grid(exc.time - self.lead, self.grid)
+            if end <= t + self.grid:
+                end = floor_grid(exc.time, self.grid)
             if end <= t + self.grid or end >= until:
                 raise
             trial = []

@@ -113,7 +113,9 @@ class Kernel:
                              for p in ct.processes]
         self._flows: dict[tuple[int, ...], Flow] = {}
         self._shapes: dict[tuple[int, ...], Shape] = {}
-        self._last_flow: tuple[tuple[int, ...], Values, Flow] | None = None
+        # flows from start values, most recent last (a search asks for one node's flow again
+        # for each of its waits, popped at different times): at most FLOW_CACHE of them
+        self._recent: dict[tuple[tuple[int, ...], Values], Flow] = {}
         self._comp_cache: dict[tuple[frozenset[int], str, int | None], tuple[int, ...]] = {}
         self._split_cache: dict[tuple[int, ...], tuple[_Rows | None, tuple[int, ...]]] = {}
         items = ct.comps.items
@@ -169,22 +171,31 @@ class Kernel:
             found = self._shapes[active] = shape_of(self.ct.processes, active)
         return found
 
+    #: Flows from start values kept for a later call with the same values (a flow is a
+    #: function of its processes and start values: a cached one answers as a new one would).
+    FLOW_CACHE = 64
+
     def flow_of(self, active: tuple[int, ...], values: Values) -> Flow:
-        """The flow while exactly ``active`` run, from ``values`` (cached for constant rates)."""
+        """The flow while exactly ``active`` run, from ``values`` (cached for constant rates,
+        and the last :attr:`FLOW_CACHE` others)."""
         if not active:
             return STILL
         cached = self._flows.get(active)
         if cached is not None:
             return cached
-        last = self._last_flow
-        if last is not None and last[0] == active and last[1] is values:
-            return last[2]
+        key = (active, values)
+        recent = self._recent.get(key)
+        if recent is not None:
+            return recent
         flow = make_flow(self.shape(active), values, self.ct.tol)
         if isinstance(flow, NumericFlow):
             self.counters["numeric_flows"] += 1
         elif all(self._const_rates[i] for i in active):
             self._flows[active] = flow
-        self._last_flow = (active, values, flow)
+            return flow
+        if len(self._recent) >= self.FLOW_CACHE:
+            del self._recent[next(iter(self._recent))]
+        self._recent[key] = flow
         return flow
 
     def flow(self, facts: int, values: Values) -> tuple[tuple[int, ...], Flow]:
