@@ -60,6 +60,8 @@ def _header(options: EncodingOptions) -> str:
         functions += ["(link-index ?l - link)", "(held-index)"]
     if options.model == "ucm":
         functions.append("(speed-g)")
+    if options.torque_fall:
+        functions.append("(fall ?l - link)")
     if options.model == "uacm":
         functions += ["(acceleration)", "(gravity-speed ?l - link)"]
     if options.has_gravity:
@@ -214,6 +216,8 @@ def _gravity(options: EncodingOptions, sign: str) -> str:
     m = fmt_number(options.hysteresis)
     uacm = options.model == "uacm"
     rate = "(gravity-speed ?l)" if uacm else "(speed-g)"
+    if options.torque_fall:
+        rate = "(* (speed-g) (fall ?l))"
     rate1 = rate.replace("?l)", "?l1)")
     reset = "\n      (assign (gravity-speed ?l) 0)" if uacm else ""
     azimuth = _azimuth(options, f"propagate-gravity-{sign}-azimuth",
