@@ -118,6 +118,11 @@ def _robot(options: EncodingOptions, sign: str) -> str:
         ready += f"\n      (or (unlocked ?l2) (not (refused-{sign} ?l1 ?l2 ?p)))"
         reach += ("\n      (unlocked ?l2)\n      (forall (?l - link)\n        "
                   "(when (affects ?l2 ?l) (unlocked ?l)))")
+    if options.torque_fall:
+        # The factors are the percept's geometry: links the robot turns fall at the paper's
+        # uniform speed from then on (their new torques are not modelled).
+        held_start += ("\n      (assign (fall ?l2) 1)\n      (forall (?l - link)\n        "
+                  "(when (affects ?l2 ?l) (assign (fall ?l) 1)))")
     carried = _carried(options, speed, "?p")
     turning = f"({flag} ?l1 {options.gravity_plane})\n      (affects ?l1 ?l2)"
     azimuth = _azimuth(options, f"propagate-{sign}-azimuth", turning, sign, speed)
