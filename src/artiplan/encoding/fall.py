@@ -50,9 +50,7 @@ def fall_factors(obj: ArticulatedObject, conf: Configuration) -> tuple[float, ..
         u = (points[j + 1] - points[j]) / obj.link_length
         du = np.cross(omega, u)
         sin_g = math.sqrt(max(0.0, 1.0 - float(u[2]) ** 2))
-        if sin_g < POLE_SIN:
-            rate = float(np.linalg.norm(du))
-        else:
-            rate = -float(du[2]) / sin_g  # d(gamma)/dt is du_z / sin(gamma); toward rest: minus
+        # d(gamma)/dt is du_z / sin(gamma); toward rest is minus that.
+        rate = float(np.linalg.norm(du)) if sin_g < POLE_SIN else -float(du[2]) / sin_g
         out.append(min(1.0, max(FALL_MIN, rate / half)))
     return tuple(out)
