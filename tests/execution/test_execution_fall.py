@@ -40,10 +40,12 @@ def test_options_keep_the_default_encodings_and_refuse_torque_without_ucm() -> N
     torque = EncodingOptions("ucm", fall="torque")
     assert "(* (speed-g) (fall ?l1))" in domain_pddl(obj, torque)
     assert "(= (fall L2)" in problem_pddl(obj, conf, conf, torque)
-    # A link the robot turns falls at the uniform speed from then on (its new torque unknown).
+    # A link the robot tilts falls at the uniform speed from then on (its new torque unknown);
+    # a turn about the vertical keeps the torques.
     start = domain_pddl(obj, torque).split("(:action start-increase", 1)[1].split("(:action", 1)[0]
-    assert "(assign (fall ?l2) 1)" in start
-    assert "(when (affects ?l2 ?l) (assign (fall ?l) 1))" in start
+    assert "(when (tilts ?p) (assign (fall ?l2) 1))" in start
+    assert "(when (and (tilts ?p) (affects ?l2 ?l)) (assign (fall ?l) 1))" in start
+    assert "(tilts z-axis)" in problem_pddl(obj, conf, conf, torque)
     with pytest.raises(ValueError, match="needs the ucm model"):
         EncodingOptions("uacm", fall="torque")
     with pytest.raises(ValueError, match="unknown fall"):

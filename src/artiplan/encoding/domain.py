@@ -62,6 +62,7 @@ def _header(options: EncodingOptions) -> str:
         functions.append("(speed-g)")
     if options.torque_fall:
         functions.append("(fall ?l - link)")
+        predicates.append("(tilts ?p - plane)")
     if options.model == "uacm":
         functions += ["(acceleration)", "(gravity-speed ?l - link)"]
     if options.has_gravity:
@@ -119,10 +120,11 @@ def _robot(options: EncodingOptions, sign: str) -> str:
         reach += ("\n      (unlocked ?l2)\n      (forall (?l - link)\n        "
                   "(when (affects ?l2 ?l) (unlocked ?l)))")
     if options.torque_fall:
-        # The factors are the percept's geometry: links the robot turns fall at the paper's
-        # uniform speed from then on (their new torques are not modelled).
-        held_start += ("\n      (assign (fall ?l2) 1)\n      (forall (?l - link)\n        "
-                  "(when (affects ?l2 ?l) (assign (fall ?l) 1)))")
+        # The factors are the percept's geometry: links the robot tilts (a turn on the gravity
+        # plane) fall at the paper's uniform speed from then on (their new torques are not
+        # modelled); a turn about the vertical leaves every gravity torque as it was.
+        held_start += ("\n      (when (tilts ?p) (assign (fall ?l2) 1))\n      (forall (?l - link)"
+                       "\n        (when (and (tilts ?p) (affects ?l2 ?l)) (assign (fall ?l) 1)))")
     carried = _carried(options, speed, "?p")
     turning = f"({flag} ?l1 {options.gravity_plane})\n      (affects ?l1 ?l2)"
     azimuth = _azimuth(options, f"propagate-{sign}-azimuth", turning, sign, speed)

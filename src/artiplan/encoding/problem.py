@@ -29,6 +29,7 @@ def _init_facts(obj: ArticulatedObject, init: Configuration, options: EncodingOp
     if options.model == "ucm":
         facts.append(f"(= (speed-g) {fmt_number(options.speed_g)})")
     if options.torque_fall:
+        facts.append(f"(tilts {options.gravity_plane})")
         facts += [f"(= (fall {lk}) {fmt_number(round(f, 3))})"
                   for lk, f in zip(obj.links, fall_factors(obj, init), strict=True)]
     if options.model == "uacm":
