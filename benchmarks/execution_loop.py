@@ -98,6 +98,7 @@ def main() -> None:
                 args.logs.mkdir(parents=True, exist_ok=True)
                 log.save(args.logs / f"task-{k}.json")
             fh.write(json.dumps(row) + "\n")
+            fh.flush()  # a run stopped early keeps its finished tasks
             print(json.dumps(row), flush=True)
     lat = [x for r in rows for x in r["latency_wall_s"]]
     print(f"success {sum(r['success'] for r in rows)}/{len(rows)}, re-plans mean "
