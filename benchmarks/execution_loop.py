@@ -40,6 +40,8 @@ def main() -> None:
                     help="switch to NG from this many re-plans on (default: LoopConfig's)")
     ap.add_argument("--carry", choices=("rigid", "projected"), default="rigid",
                     help="the encodings' carry rule (EncodingOptions.carry)")
+    ap.add_argument("--fall", choices=("uniform", "torque"), default="uniform",
+                    help="UCM's fall speeds (EncodingOptions.fall)")
     ap.add_argument("--start", type=int, default=1, help="first task index")
     ap.add_argument("--logs", type=Path, default=None,
                     help="also write each run's full log here as task-K.json (for diagnosis)")
@@ -61,7 +63,7 @@ def main() -> None:
         print(f"measured reach time on the simulated Baxter: {reach} s", flush=True)
     enc = EncodingOptions(args.model, speed_g=round(cal.speed_g, 3),
                           acceleration=round(cal.acceleration, 3), reach_time=reach,
-                          carry=args.carry)
+                          carry=args.carry, fall=args.fall)
     ivs = (Intervention(0.0, "L3", "z-axis", 20.0, fraction=0.4),) if args.intervene else ()
     config = LoopConfig(encoding=enc, interventions=ivs,
                         advance_latency=args.advance_latency,
@@ -90,12 +92,13 @@ def main() -> None:
                    "max_goal_error": log.final.get("max_goal_error"),
                    "hands": world.hands.kind, "model": args.model, "preset": args.preset,
                    "approach_s": args.approach, "reach_time": reach,
-                   "compensate": not args.no_compensate, "carry": args.carry}
+                   "compensate": not args.no_compensate, "carry": args.carry, "fall": args.fall}
             rows.append(row)
             if args.logs is not None:
                 args.logs.mkdir(parents=True, exist_ok=True)
                 log.save(args.logs / f"task-{k}.json")
             fh.write(json.dumps(row) + "\n")
+            fh.flush()  # a run stopped early keeps its finished tasks
             print(json.dumps(row), flush=True)
     lat = [x for r in rows for x in r["latency_wall_s"]]
     print(f"success {sum(r['success'] for r in rows)}/{len(rows)}, re-plans mean "

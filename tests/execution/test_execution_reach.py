@@ -43,3 +43,28 @@ def test_measured_baxter_reach_time_is_positive_and_in_the_problem() -> None:
     assert 0.6 <= reach < 6.0
     found = re.search(r"\(= \(reach-time\) ([0-9.]+)\)", _problem(reach, hands_away=True))
     assert found is not None and float(found.group(1)) == reach
+
+
+@pytest.mark.slow  # ~10 s: two Baxter worlds, their approaches simulated
+def test_final_leg_at_its_own_pace_and_approach_s_a_lower_bound(monkeypatch) -> None:  # type: ignore[no-untyped-def]
+    from artiplan.world import approach, make_world
+
+    runs: list[tuple[float, float]] = []
+    follow = approach.ApproachMotion._run
+
+    def run(self, hands, path, advance, settle_s=0.2):  # type: ignore[no-untyped-def]
+        runs.append((path.duration, path.natural))
+        return follow(self, hands, path, advance, settle_s)
+
+    monkeypatch.setattr(approach.ApproachMotion, "_run", run)
+    obj = ArticulatedObject(4)
+    fast = measure_reach(make_world, obj, approach_s=0.4, repeats=1)
+    final = runs[-1]
+    # The re-solved final leg is one segment timed on its own: not stretched to the planned
+    # IK waypoints' stop-at-each duration (which made the measured reach 3.18 s, not 2.43 s).
+    assert final[0] == pytest.approx(final[1]) and final[1] < 1.0
+    runs.clear()
+    slow = measure_reach(make_world, obj, approach_s=4.0, repeats=1)
+    assert fast is not None and slow is not None
+    assert sum(d for d, _ in runs) == pytest.approx(4.0, abs=0.02)  # the motions: >= 4 s
+    assert slow >= 4.0 + approach.APPROACH_SETTLE_S - 0.02 and fast < slow

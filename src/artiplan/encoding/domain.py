@@ -72,6 +72,9 @@ def _header(options: EncodingOptions) -> str:
         functions += ["(link-index ?l - link)", "(held-index)"]
     if options.model == "ucm":
         functions.append("(speed-g)")
+    if options.torque_fall:
+        functions.append("(fall ?l - link)")
+        predicates.append("(tilts ?p - plane)")
     if options.model == "uacm":
         functions += ["(acceleration)", "(gravity-speed ?l - link)"]
     if options.has_gravity:
@@ -128,6 +131,12 @@ def _robot(options: EncodingOptions, sign: str) -> str:
         ready += f"\n      (or (unlocked ?l2) (not (refused-{sign} ?l1 ?l2 ?p)))"
         reach += ("\n      (unlocked ?l2)\n      (forall (?l - link)\n        "
                   "(when (affects ?l2 ?l) (unlocked ?l)))")
+    if options.torque_fall:
+        # The factors are the percept's geometry: links the robot tilts (a turn on the gravity
+        # plane) fall at the paper's uniform speed from then on (their new torques are not
+        # modelled); a turn about the vertical leaves every gravity torque as it was.
+        held_start += ("\n      (when (tilts ?p) (assign (fall ?l2) 1))\n      (forall (?l - link)"
+                       "\n        (when (and (tilts ?p) (affects ?l2 ?l)) (assign (fall ?l) 1)))")
     carried = _carried(options, speed, "?p")
     turning = f"({flag} ?l1 {options.gravity_plane})\n      (affects ?l1 ?l2)"
     azimuth = _azimuth(options, f"propagate-{sign}-azimuth", turning, sign, speed)
@@ -253,6 +262,8 @@ def _gravity(options: EncodingOptions, sign: str) -> str:
     m = fmt_number(options.hysteresis)
     uacm = options.model == "uacm"
     rate = "(gravity-speed ?l)" if uacm else "(speed-g)"
+    if options.torque_fall:
+        rate = "(* (speed-g) (fall ?l))"
     rate1 = rate.replace("?l)", "?l1)")
     reset = "\n      (assign (gravity-speed ?l) 0)" if uacm else ""
     azimuth = _azimuth(options, f"propagate-gravity-{sign}-azimuth",

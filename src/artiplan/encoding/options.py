@@ -19,6 +19,8 @@ Model = Literal["ng", "ucm", "uacm"]
 MODELS: tuple[str, ...] = ("ng", "ucm", "uacm")
 Carry = Literal["rigid", "projected"]
 CARRIES: tuple[str, ...] = ("rigid", "projected")
+Fall = Literal["uniform", "torque"]
+FALLS: tuple[str, ...] = ("uniform", "torque")
 
 
 @dataclass(frozen=True)
@@ -51,6 +53,13 @@ class EncodingOptions:
             just refused (``(refused-increase ?l1 ?l2 ?p)``, ``(refused-decrease ...)``: no
             such start until a turn of ?l2 or of a link base-ward of it has stopped, which
             makes ``(unlocked ?l2)``). Off by default: the suite's domains do not have it.
+        fall: UCM only. ``uniform`` (the paper): every free link falls at ``speed-g``.
+            ``torque``: link l falls at ``speed-g`` times ``(fall l)``, a problem constant
+            from the initial configuration: its joint's rate in an overdamped chain whose
+            joint damping grows with the load, relative to a straight horizontal subchain's
+            (:mod:`artiplan.encoding.fall`; links near rest, or folded back over their
+            joint, fall much more slowly). For the closed loop, which re-plans from each
+            percept; the suite's domains do not have it.
     """
 
     model: Model = "ng"
@@ -63,6 +72,7 @@ class EncodingOptions:
     reach_time: float | None = None
     carry: Carry = "rigid"
     refusals: bool = False
+    fall: Fall = "uniform"
 
     def __post_init__(self) -> None:
         if self.model not in MODELS:
@@ -78,6 +88,10 @@ class EncodingOptions:
             )
         if self.carry not in CARRIES:
             raise ValueError(f"unknown carry {self.carry!r}; valid: {', '.join(CARRIES)}")
+        if self.fall not in FALLS:
+            raise ValueError(f"unknown fall {self.fall!r}; valid: {', '.join(FALLS)}")
+        if self.fall != "uniform" and self.model != "ucm":
+            raise ValueError(f"fall={self.fall!r} needs the ucm model, not {self.model!r}")
         if self.reach_time is not None and self.reach_time < 0:
             raise ValueError(f"reach_time must be >= 0, got {self.reach_time}")
 
@@ -90,6 +104,11 @@ class EncodingOptions:
     def has_reach(self) -> bool:
         """True when the domain models the reach time (see ``reach_time``)."""
         return self.reach_time is not None and self.reach_time >= 1.5 * VAL_EVENT_WINDOW
+
+    @property
+    def torque_fall(self) -> bool:
+        """True when UCM's fall speed is scaled per link (``fall="torque"``)."""
+        return self.fall == "torque"
 
     @property
     def margin(self) -> float:

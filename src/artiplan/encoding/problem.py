@@ -5,6 +5,7 @@ from __future__ import annotations
 import math
 
 from artiplan.encoding.domain import domain_name
+from artiplan.encoding.fall import fall_factors
 from artiplan.encoding.goals import GoalSpec, fmt_number, make_goal
 from artiplan.encoding.gravity import initial_gravity
 from artiplan.encoding.options import EncodingOptions
@@ -27,6 +28,10 @@ def _init_facts(obj: ArticulatedObject, init: Configuration, options: EncodingOp
     ]
     if options.model == "ucm":
         facts.append(f"(= (speed-g) {fmt_number(options.speed_g)})")
+    if options.torque_fall:
+        facts.append(f"(tilts {options.gravity_plane})")
+        facts += [f"(= (fall {lk}) {fmt_number(round(f, 3))})"
+                  for lk, f in zip(obj.links, fall_factors(obj, init), strict=True)]
     if options.model == "uacm":
         facts.append(f"(= (acceleration) {fmt_number(options.acceleration)})")
     if options.has_gravity:

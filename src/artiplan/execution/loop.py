@@ -176,7 +176,8 @@ class ClosedLoop:
         """Switch to the fallback model (see ``LoopConfig.fallback_model``)."""
         model = self.config.fallback_model
         if model is not None and model != self.encoding.model:
-            self.encoding = replace(self.encoding, model=cast(Model, model))
+            fall = self.encoding.fall if model == "ucm" else "uniform"  # ucm only
+            self.encoding = replace(self.encoding, model=cast(Model, model), fall=fall)
             self.domain = domain_pddl(self.obj, self.encoding)
             self.progress(f"falling back to the {model.upper()} model for the next plans")
 
