@@ -41,13 +41,13 @@ from artiplan.semantics.compiled import (
 from artiplan.semantics.walks import Linear, conjuncts, linear
 
 
-def _unguarded(cond: Condition, guards: set[int]) -> Condition | None:
-    """``cond`` without its guard literals (``not f`` for a fact ``f`` its event adds, so that it
-    fires once until re-armed); ``None`` if it reads another fact. Relaxed, a guarded wrap is a
-    plain wrap."""
+def _unguarded(cond: Condition, guards: int) -> Condition | None:
+    """``cond`` without its guard literals (``not g`` for a guard fact in the mask ``guards``,
+    :func:`~artiplan.semantics.compiled.guard_facts`); ``None`` if it reads another fact.
+    Relaxed, a guarded wrap is a plain wrap."""
     parts = [c for c in conjuncts(cond)
              if not (isinstance(c, Not) and isinstance(c.operand, Atom)
-                     and c.operand.fact in guards)]
+                     and guards >> c.operand.fact & 1)]
     if any(isinstance(c, Atom) or isinstance(c, Not) and isinstance(c.operand, Atom)
            for c in parts):
         return None
@@ -253,7 +253,7 @@ class RateHeuristic(SideEffects):
             if eff.conditional or len(eff.numeric) != 1:
                 continue
             ne = eff.numeric[0]
-            numeric = _unguarded(ev.precondition, set(eff.add))
+            numeric = _unguarded(ev.precondition, self.ct.guards)
             trigger = None if numeric is None else condition_set(numeric, ne.fluent)
             lin = linear(ne.expr)
             if trigger is None or lin is None or lin[0]:

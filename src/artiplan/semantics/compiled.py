@@ -267,7 +267,7 @@ class CompiledTask:
     #: comparisons watched while waiting: the dynamic ones (not those only re-arms read), the
     #: goal's, action preconditions'
     watched: frozenset[int]
-    #: per fluent, the watched comparisons that read it
+    #: per fluent, the watched and dynamic comparisons that read it
     fluent_comps: dict[int, tuple[int, ...]]
     #: the goal and action preconditions are read snapped, without the slack (the planner's)
     strict: bool = False
@@ -302,11 +302,11 @@ def _operator(i: int, op: GroundAction, comps: ComparisonTable, tol: Tolerances,
 def guard_facts(task: Task) -> tuple[int, frozenset[int]]:
     """Guard facts (mask) and the events that only re-arm them (cached per task).
 
-    A guard ``g`` is read by no action, process, invariant or goal; every event that requires
-    ``not g`` adds ``g`` (it fires once until re-armed), and every event that requires ``g``
-    only deletes guards (a re-arm). The wrap flags of artiplan's encodings are guards: under
-    exact semantics they never change what happens, they make VAL see a wrap falsify its
-    precondition (docs/encodings.md, "Wrap-around").
+    A guard ``g`` is read by no action, process, invariant or goal, and every event that reads
+    it either requires ``not g`` at the top level and adds ``g`` (it fires once until
+    re-armed) or only deletes guards (a re-arm, which may read them anywhere). The wrap flags
+    of artiplan's encodings are guards: under exact semantics they never change what happens,
+    they make VAL see a wrap falsify its precondition (docs/encodings.md, "Wrap-around").
     """
     return per_task(task, "guards", lambda: _guard_facts(task))
 
@@ -379,12 +379,11 @@ def _compile(task: Task, tol: Tolerances, strict: bool) -> CompiledTask:
                                  sum(1 << f for f in p.discrete.delete)))
     goal, goal_comps = compile_condition(task.goal, comps, tol, snap=strict)
     invariants = tuple(compile_condition(c, comps, tol) for c in task.invariants)
-    dynamic = frozenset().union(*(e.pre_comps for e in events), *(p.pre_comps for p in processes),
-                                *(used for _, used in invariants))
     guards, rearms = guard_facts(task)
     spaced = frozenset().union(*(e.pre_comps for i, e in enumerate(events) if i not in rearms),
                                *(p.pre_comps for p in processes),
                                *(used for _, used in invariants))
+    dynamic = spaced.union(*(events[i].pre_comps for i in rearms))
     # a re-arm changes nothing a wait could be for: its comparisons are not watched
     watched = spaced | goal_comps | frozenset().union(*(a.pre_comps for a in actions))
     fluent_comps: dict[int, list[int]] = {}
