@@ -35,3 +35,17 @@ def test_robustness_is_the_distance_to_a_change_of_truth() -> None:
     assert robustness(Not(window), 0, [12.0, 0.0]) == pytest.approx(-2.0)
     assert robustness(Atom(0), 0b1, [0.0, 0.0]) == float("inf")
     assert robustness(Comparison("=", x, Const(1.0)), 0, [1.25, 0.0]) == pytest.approx(-0.25)
+
+
+def test_goal_margin_grows_with_the_events_on_the_path() -> None:
+    """VAL's event timing errors add up over a cascade of events: the goal wait runs on
+    longer the more events the path has seen (SearchConfig.margin_per_event)."""
+    problem = suite_problem("uacm-0.5", 5, 1)
+    flat = plan(*problem, time_limit=60, margin_per_event=0.0, improve=False)
+    grown = plan(*problem, time_limit=60, margin_per_event=0.004, improve=False)
+    assert flat.plan is not None and grown.plan is not None
+    assert flat.trajectory is not None and len(flat.trajectory.events) >= 5
+    names = [(a.name, a.args) for a in flat.plan.actions]
+    assert names == [(a.name, a.args) for a in grown.plan.actions]
+    # the final goal wait comes after >= 5 events: >= 0.02 s more than the flat 0.01 s
+    assert grown.plan.makespan >= flat.plan.makespan + 0.015, (flat.plan, grown.plan)

@@ -54,6 +54,8 @@ class PlannerConfig:
         time_weight: Heuristic cost of one second of plan, in actions [1/s].
         goal_margin: Time [s] a goal wait runs on past the goal boundary while the goal keeps
             holding (the plan's end sees the goal with a margin).
+        margin_per_event: The goal margin grows by this [s] per event before the goal wait
+            (at most to 0.1 s): VAL's event timing errors add up over long cascades.
         event_gap: No action closer than this [s] to an event (1.5 x VAL's event window).
         value_precision: Decimals of values in duplicate detection.
         validate: Check every plan with the validator before returning it.
@@ -66,6 +68,7 @@ class PlannerConfig:
     epsilon: float = VAL_TIME_TOLERANCE
     time_weight: float = 0.1
     goal_margin: float = 0.01
+    margin_per_event: float = 0.0002
     event_gap: float = 1.5 * VAL_EVENT_WINDOW
     value_precision: int = 6
     validate: bool = True
@@ -88,6 +91,7 @@ class PlannerConfig:
 
     def search(self) -> SearchConfig:
         return SearchConfig(epsilon=self.epsilon, goal_margin=self.goal_margin,
+                            margin_per_event=self.margin_per_event,
                             value_precision=self.value_precision, event_gap=self.event_gap)
 
 

@@ -63,6 +63,10 @@ class SearchConfig:
         value_precision: Values are rounded to this many decimals for duplicate detection.
         goal_margin: Extra time [s] a goal wait runs on, while the goal (group) keeps holding,
             so the plan's last happening sees the goal with a margin.
+        margin_per_event: The goal margin grows by this [s] per event on the path, up to
+            ``max_goal_margin`` [s]: stock VAL fires an event anywhere in its 0.01 s window
+            around a happening, and on long cascades (30 links, 350 events) the shifts add up
+            to a few tenths of a degree (benchmarks/results/semantics.md, class 4).
         boost: Pops from the preferred list after each improvement of the best value.
         max_wait_steps: Critical times one macro wait may cross.
         event_gap: No action closer than this [s] to an event, before or after it (VAL fires
@@ -81,6 +85,8 @@ class SearchConfig:
     epsilon: float = 0.001
     value_precision: int = 6
     goal_margin: float = 0.01
+    margin_per_event: float = 0.0002
+    max_goal_margin: float = 0.1
     boost: int = 1000
     max_wait_steps: int = 64
     event_gap: float = 1.5 * VAL_EVENT_WINDOW
@@ -107,6 +113,7 @@ class Node:
     n_actions: int = 0  # actions on the path from the initial node
     last_event: float = -math.inf  # time of the latest event on the path [s]
     forced: int = 0  # rescues among the actions on the path (not counted in g)
+    n_events: int = 0  # events on the path from the initial node
     at_threat: bool = False  # an invariant fails within 2 leads (set when expanded)
 
 
@@ -204,10 +211,11 @@ class Search:
             ready = round(t + self.config.epsilon, 9)
             return Node(t, facts, values, ready, pi, op, log, True, active, after,
                         parent.n_actions + 1, last_event_after(parent, log, self.ct.rearms),
-                        parent.forced + isinstance(op, Rescue))
+                        parent.forced + isinstance(op, Rescue),
+                        n_events=parent.n_events + len(log))
         if isinstance(op, WaitNext):
             res = self.waits.next(parent.time, parent.facts, parent.values, log, parent.active,
-                                  self.config.goal_margin, self.ct.goal_comps)
+                                  self.goal_margin(parent), self.ct.goal_comps)
         elif isinstance(op, WaitBefore):
             res = self.waits.before(parent.time, parent.facts, parent.values, log,
                                     parent.active, self.closers, self.triggers,
@@ -233,13 +241,20 @@ class Search:
                 fn, comps = self.ct.goal, self.ct.goal_comps
             res = self.waits.until(parent.time, parent.facts, parent.values, fn, comps, log,
                                    parent.active, self.config.max_wait_steps,
-                                   self.config.goal_margin)
+                                   self.goal_margin(parent))
         if res is None:
             return None
         t, facts, values, active = res
         return Node(t, facts, values, parent.ready, pi, op, log, False, active,
                     n_actions=parent.n_actions,
-                    last_event=last_event_after(parent, log, self.ct.rearms), forced=parent.forced)
+                    last_event=last_event_after(parent, log, self.ct.rearms), forced=parent.forced,
+                    n_events=parent.n_events + len(log))
+
+    def goal_margin(self, node: Node) -> float:
+        """The goal margin [s] of a goal wait from ``node``: the base margin, grown with the
+        events on the path (``SearchConfig.margin_per_event``)."""
+        c = self.config
+        return min(c.max_goal_margin, c.goal_margin + c.margin_per_event * node.n_events)
 
     def _undoes(self, parent: Node, act: Operator, facts: int, values: Values) -> bool:
         """True when ``act`` right after ``parent``'s action restores the facts from before
@@ -462,7 +477,7 @@ def initial_node(ct: CompiledTask, kernel: Kernel) -> Node:
     log: EventLog = []
     facts, values, active = kernel.settle(0.0, ct.init_facts, ct.init_values, log)
     return Node(0.0, facts, values, 0.0, -1, START, log, False, active,
-                last_event=latest_event(log, ct.rearms))
+                last_event=latest_event(log, ct.rearms), n_events=len(log))
 
 
 def last_event_after(parent: Node, log: EventLog, quiet: frozenset[int] = frozenset()) -> float:

@@ -159,7 +159,7 @@ def _probe(search: Search, horizon: Callable[[], float]) -> int:
             res = search.waits.until(child.time, child.facts, child.values, ct.goal,
                                      ct.goal_comps,
                                  log, child.active, search.config.max_wait_steps,
-                                 search.config.goal_margin, horizon=horizon())
+                                 search.goal_margin(child), horizon=horizon())
         except InvalidPlanError:
             continue
         if res is None:
@@ -167,7 +167,8 @@ def _probe(search: Search, horizon: Callable[[], float]) -> int:
         t, facts, values, active = res
         search.nodes.append(Node(t, facts, values, child.ready, len(search.nodes) - 1, WAIT_GOAL,
                                  log, False, active, n_actions=child.n_actions,
-                                 last_event=last_event_after(child, log, search.ct.rearms)))
+                                 last_event=last_event_after(child, log, search.ct.rearms),
+                                 n_events=child.n_events + len(log)))
         closing = search.closing(search.nodes[-1])
         if closing is not None:
             search.accept(SearchOutcome(len(search.nodes) - 1, search.nodes,
