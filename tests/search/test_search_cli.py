@@ -61,8 +61,10 @@ def test_plan_rejects_bad_limits(tmp_path: Path) -> None:
 
 
 def test_a_long_search_shows_progress_and_keeps_its_time_limit(tmp_path: Path) -> None:
-    """A 30-link UACM problem does not finish in 4 s: progress lines every few seconds, exit 7,
-    and the limit covers the whole process (start-up included) within a loose bound."""
+    """A 30-link UACM problem does not finish in 6 s: progress lines every few seconds, exit 7,
+    and the limit covers the whole process (start-up included) within a loose bound (the
+    phases before the search check the limit between them; at load 5 on 2 cores start-up,
+    grounding and compiling alone take 4-5 s)."""
     import subprocess
     import sys
     import time
@@ -70,10 +72,10 @@ def test_a_long_search_shows_progress_and_keeps_its_time_limit(tmp_path: Path) -
     d, p = _files(tmp_path, 30, "uacm", seed=4)  # no plan within 12 s wall (measured)
     start = time.monotonic()
     proc = subprocess.run([sys.executable, "-m", "artiplan", "plan", str(d), str(p),
-                           "--time-limit", "4"], capture_output=True, text=True, timeout=120)
+                           "--time-limit", "6"], capture_output=True, text=True, timeout=120)
     wall = time.monotonic() - start
     assert proc.returncode == 7, proc.stderr[-500:]
     progress = [ln for ln in proc.stderr.splitlines() if " s attempts=" in ln]
     assert progress and "expanded=" in progress[0], proc.stderr[-500:]
-    assert "time limit of 4 s reached" in proc.stderr
-    assert wall < 4 + 2.0  # generous: only a stuck limit fails this
+    assert "time limit of 6 s reached" in proc.stderr
+    assert wall < 6 + 2.0  # generous: only a stuck limit fails this

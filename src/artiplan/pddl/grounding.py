@@ -32,6 +32,10 @@ from artiplan.pddl.simplify import make_and
 from artiplan.pddl.types import TypeHierarchy, objects_by_type
 from artiplan.records import replace
 
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
 
 def changed_symbols(domain: s.Domain) -> tuple[set[str], set[str]]:
     """Lower-case names of the predicates and functions some effect changes."""
@@ -87,8 +91,10 @@ def _context(domain: s.Domain, problem: s.Problem) -> tuple[GroundContext, dict[
     return ctx, symbols
 
 
-def ground(domain: s.Domain, problem: s.Problem) -> t.Task:
-    """Ground ``problem`` of ``domain`` (both syntax trees) into an indexed task."""
+def ground(domain: s.Domain, problem: s.Problem,
+           check: Callable[[], None] | None = None) -> t.Task:
+    """Ground ``problem`` of ``domain`` (both syntax trees) into an indexed task; ``check``
+    is called before each operator schema (it may raise to stop, e.g. at a time limit)."""
     start = time.perf_counter()
     warnings = [*domain.warnings, *check_problem(domain, problem)]
     domain, durative = compile_durative(domain)
@@ -109,6 +115,8 @@ def ground(domain: s.Domain, problem: s.Problem) -> t.Task:
     invariants: list[t.Condition] = []
     naive = 0
     for op in domain.operators:
+        if check is not None:
+            check()
         if op.kind == "constraint":  # an invariant for every binding, not an operator
             invariants += [t.TRUE if op.precondition is None else
                            ground_condition(ctx, op.precondition, b)

@@ -10,6 +10,10 @@ from artiplan.pddl.grounding import ground
 from artiplan.pddl.parser import parse_domain, parse_problem
 from artiplan.pddl.task import Task
 
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    from collections.abc import Callable
+
 
 def read_source(source: str | Path, default_name: str) -> tuple[str, str]:
     """``(text, filename)`` of a path or of PDDL text (text starts with ``(`` or ``;``)."""
@@ -42,6 +46,11 @@ def load_problem(source: str | Path) -> s.Problem:
     return parse_problem(text, name)
 
 
-def load_task(domain: str | Path, problem: str | Path) -> Task:
-    """Parse, check and ground; ``domain`` and ``problem`` are paths or PDDL text."""
-    return ground(load_domain(domain), load_problem(problem))
+def load_task(domain: str | Path, problem: str | Path,
+              check: Callable[[], None] | None = None) -> Task:
+    """Parse, check and ground; ``domain`` and ``problem`` are paths or PDDL text.
+
+    ``check`` is called between operator schemas while grounding (a time limit raises
+    from it: grounding a 30-link chain takes seconds on a loaded machine).
+    """
+    return ground(load_domain(domain), load_problem(problem), check)

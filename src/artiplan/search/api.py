@@ -170,8 +170,17 @@ def plan(
     from artiplan.pddl import load_task
 
     t0 = time.perf_counter()
-    task = load_task(str(domain) if isinstance(domain, Path) else domain,
-                     str(problem) if isinstance(problem, Path) else problem)
+    # Grounding a long chain takes seconds: it obeys the limit and shows progress too.
+    loading = Limits(time_limit, on_progress=None if on_progress is None else
+                     lambda elapsed: on_progress(elapsed, PlanStats()))
+    try:
+        task = load_task(str(domain) if isinstance(domain, Path) else domain,
+                         str(problem) if isinstance(problem, Path) else problem,
+                         loading.check if time_limit or on_progress else None)
+    except LimitReached as exc:
+        result = PlanResult(PlanStatus.TIMEOUT, message=f"{exc} (while grounding)")
+        result.stats.total_s = time.perf_counter() - t0
+        return result
     load_s = time.perf_counter() - t0
     remaining = None if time_limit is None else max(0.0, time_limit - load_s)
     result = plan_task(task, time_limit=remaining, memory_limit=memory_limit,
@@ -231,13 +240,17 @@ class _Planning:
         self.on_progress(elapsed, now)
 
     def solve(self) -> PlanResult:
+        # The phases before the search do not check the limits inside: check between them.
+        self.limits.check()
         t = time.perf_counter()
         self.ct = compile_task(self.task, strict=True)
         self.kernel = Kernel(self.ct)
         self.stats.compile_s = time.perf_counter() - t
+        self.limits.check()
         reason = prove_unsolvable(self.task)
         if reason is not None:
             return PlanResult(PlanStatus.UNSOLVABLE_PROVEN, message=reason)
+        self.limits.check()
         outcome = self._search()
         if (outcome.goal is None and not outcome.repaired) or self.best is None:
             return PlanResult(PlanStatus.NO_PLAN, message="search space exhausted without a "
@@ -270,6 +283,7 @@ class _Planning:
                 if kind in exhausted:
                     continue  # the same operators searched their whole space already
                 heur, search_config = self._attempt(attempt)
+                self.limits.check()
                 budget = float("inf") if attempt.per_goal is None else \
                     attempt.per_goal * max(5, len(heur.groups))
                 search = Search(self.ct, self.kernel, heur, search_config, self.limits.check,
@@ -277,7 +291,9 @@ class _Planning:
                 stats.attempts = n
                 self.running = search
                 try:
-                    outcome = search.run(initial_node(self.ct, self.kernel), budget)
+                    root = initial_node(self.ct, self.kernel)
+                    self.limits.check()
+                    outcome = search.run(root, budget)
                 finally:
                     self.running = None
                     stats.heuristic_s += heur.seconds
