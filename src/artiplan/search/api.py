@@ -166,8 +166,7 @@ def plan(
     from artiplan.pddl import load_task
 
     t0 = time.perf_counter()
-    task = load_task(str(domain) if isinstance(domain, Path) else domain,
-                     str(problem) if isinstance(problem, Path) else problem)
+    task = load_task(domain, problem)
     load_s = time.perf_counter() - t0
     remaining = None if time_limit is None else max(0.0, time_limit - load_s)
     result = plan_task(task, time_limit=remaining, memory_limit=memory_limit,
@@ -328,26 +327,22 @@ class _Planning:
         found = fold_durative(Plan(tuple(TimedAction(round(at, 6), acts[a].name, acts[a].args)
                                          for a, at in zip(actions, fixed, strict=True))),
                               self.task.durative)
-        if not self.config.validate:
-            self.best = (found, None)
-            return True
-        report = self._validate(found)
-        if report.valid:
-            found = replace(found, events=tuple(report.events))
-            self.best = (found, report)
-            return True
-        self.stats.rejected_reasons.append(report.reason)
-        return False
+        return self._keep(found, with_events=True)
 
     def _accept(self, outcome: SearchOutcome) -> bool:
         """A goal node counts only if the validator agrees (else: searched on, counted)."""
-        found = extract_plan(self.ct, outcome)
+        return self._keep(extract_plan(self.ct, outcome))
+
+    def _keep(self, found: Plan, with_events: bool = False) -> bool:
+        """True, and ``found`` is the best plan, if the validator accepts it (or validation is
+        off; ``with_events``: the plan takes the validator's events); else the reason counts."""
         if not self.config.validate:
             self.best = (found, None)
             return True
         report = self._validate(found)
         if report.valid:
-            self.best = (found, report)
+            self.best = (replace(found, events=tuple(report.events)) if with_events else found,
+                         report)
             return True
         self.stats.rejected_reasons.append(report.reason)
         return False

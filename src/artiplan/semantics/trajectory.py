@@ -17,7 +17,6 @@ TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run tim
 if TYPE_CHECKING:
     from typing import Literal
 
-if TYPE_CHECKING:
     RowKind = Literal["init", "action", "event", "sample"]
 
 
