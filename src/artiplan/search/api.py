@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Iterator
-from pathlib import Path
 
 from artiplan.errors import InvalidPlanError, UsageError
 from artiplan.pddl.task import Task
@@ -34,6 +33,7 @@ from artiplan.tolerances import VAL_EVENT_WINDOW, VAL_TIME_TOLERANCE
 
 TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
 if TYPE_CHECKING:
+    from pathlib import Path
     from typing import Any
 
 __all__ = ["OPTIONS", "PlanResult", "PlanStats", "PlanStatus", "PlannerConfig", "plan",
