@@ -1,13 +1,17 @@
 """Old commit against new in one run: coverage, plan quality and in-process planning time.
 
 Each side plans its own suite (written by its own ``artiplan suite``: the encodings may
-differ) in a child process, in-process per problem (``artiplan.plan``, CPU time of the call).
+differ), or with ``--suite DIR`` both sides plan the same files, in a child process,
+in-process per problem (``artiplan.plan``, CPU time of the call).
 Rounds alternate the order (old, new, new, old, ...) so a machine that gets busier or quieter
 during the run favours neither; per problem the fastest round counts.
 
     git worktree add --detach /tmp/old <commit>
     python benchmarks/planner_old_new.py --old-src /tmp/old/src --rounds 2 \\
         -o benchmarks/results/planner-data/old-new.json
+
+``--plans DIR`` also writes each side's plan text (``DIR/old/<id>.plan``, ``DIR/new/...``, first
+round) and counts the problems whose plan text differs.
 """
 
 from __future__ import annotations
@@ -28,10 +32,12 @@ NEW_SRC = HERE.parents[1] / "src"
 
 
 def child(suite: str, cold: bool = False) -> None:
-    """Plan every problem of ``suite``; one JSON line per problem on stdout. ``cold``: empty
-    the process-wide cache of compiled sources before each problem (as in a fresh process)."""
+    """Plan every problem of ``suite``; one JSON line per problem on stdout (with the plan's
+    text). ``cold``: empty the process-wide cache of compiled sources before each problem (as in
+    a fresh process)."""
     import artiplan
     from artiplan.bench.suite import load_suite
+    from artiplan.semantics.plan_io import format_plan
 
     for p in load_suite(suite):
         walks = sys.modules.get("artiplan.semantics.walks")  # imported by the first plan
@@ -45,6 +51,7 @@ def child(suite: str, cold: bool = False) -> None:
             "id": p.problem_id, "status": r.status.value, "cpu_s": cpu,
             "makespan": r.plan.makespan if r.plan else None,
             "actions": len([a for a in r.plan.actions if a.name != "observe"]) if r.plan else None,
+            "text": format_plan(r.plan) if r.plan else None,
         }), flush=True)
 
 
@@ -86,6 +93,9 @@ def main() -> None:
     ap.add_argument("--new-src", type=Path, default=NEW_SRC)
     ap.add_argument("--rounds", type=int, default=2, help="rounds per side (alternating)")
     ap.add_argument("-o", "--out", type=Path, help="write the per-problem numbers (JSON)")
+    ap.add_argument("--suite", type=Path,
+                    help="one suite both sides plan (default: each side writes its own)")
+    ap.add_argument("--plans", type=Path, help="write each side's plans here and compare them")
     ap.add_argument("--cold", action="store_true",
                     help="empty the compiled-source cache before each problem (a side that "
                     "has one), as if each problem ran in a fresh process")
@@ -99,7 +109,10 @@ def main() -> None:
         suites = {"old": Path(tmp) / "old", "new": Path(tmp) / "new"}
         srcs = {"old": args.old_src, "new": args.new_src}
         for side in ("old", "new"):
-            write_suite(srcs[side], suites[side])
+            if args.suite:
+                suites[side] = args.suite
+            else:
+                write_suite(srcs[side], suites[side])
         results: dict[str, list[dict[str, dict[str, Any]]]] = {"old": [], "new": []}
         order = ["old", "new"]
         for k in range(args.rounds):
@@ -114,6 +127,23 @@ def main() -> None:
         worse = n["makespan"] > o["makespan"] + 0.05 and n["actions"] >= o["actions"]
         worse = worse or n["actions"] > o["actions"] and n["makespan"] >= o["makespan"] - 0.05
         quality["new_worse" if worse else "new_better_or_equal"] += 1
+    # Per measure, new against old: makespan equal within 1 ms, actions equal.
+    def cmp(key: str, tol: float) -> dict[str, int]:
+        signs = [(new[p][key] > old[p][key] + tol) - (new[p][key] < old[p][key] - tol)
+                 for p in both]
+        return {"better": signs.count(-1), "same": signs.count(0), "worse": signs.count(1)}
+    per_measure = {"makespan": cmp("makespan", 1e-3), "actions": cmp("actions", 0)}
+    same_text = None
+    if args.plans:
+        for side in ("old", "new"):
+            for pid, row in results[side][0].items():
+                path = args.plans / side / (pid.replace("/", "_") + ".plan")
+                path.parent.mkdir(parents=True, exist_ok=True)
+                path.write_text(row["text"] or "")
+        first = {side: results[side][0] for side in ("old", "new")}
+        differ = sorted(pid for pid in first["old"]
+                        if first["old"][pid]["text"] != first["new"].get(pid, {}).get("text"))
+        same_text = {"same": len(first["old"]) - len(differ), "differ": differ}
     so, sn = summary("old", old), summary("new", new)
     report = {
         "machine": os.uname().nodename, "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
@@ -121,7 +151,9 @@ def main() -> None:
         "median_ratio_new_old": sn["median_cpu_s"] / so["median_cpu_s"],
         "total_ratio_new_old": sn["total_cpu_s"] / so["total_cpu_s"],
         "quality_on_both_solved": quality,
-        "problems": {pid: {"old": old[pid], "new": new.get(pid)} for pid in old},
+        "per_measure_on_both_solved": per_measure, "plan_text": same_text,
+        "problems": {pid: {side: {k: v for k, v in (rows.get(pid) or {}).items() if k != "text"}
+                           for side, rows in (("old", old), ("new", new))} for pid in old},
     }
     text = json.dumps({k: v for k, v in report.items() if k != "problems"}, indent=1)
     print(text)

@@ -14,8 +14,8 @@ from __future__ import annotations
 import argparse
 import sys
 from collections.abc import Mapping
-from pathlib import Path
 
+from artiplan.commands import FilePath
 from artiplan.errors import ExitCode, UsageError
 
 TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
@@ -26,13 +26,13 @@ PLANNERS = ("artiplan", "enhsp", "kairos")
 
 
 def add_arguments(parser: argparse.ArgumentParser) -> None:
-    parser.add_argument("domain", type=Path, help="PDDL+ domain file")
-    parser.add_argument("problem", type=Path, help="PDDL+ problem file")
-    parser.add_argument("-o", "--out", type=Path, help="write the plan (VAL format) here")
+    parser.add_argument("domain", type=FilePath, help="PDDL+ domain file")
+    parser.add_argument("problem", type=FilePath, help="PDDL+ problem file")
+    parser.add_argument("-o", "--out", type=FilePath, help="write the plan (VAL format) here")
     parser.add_argument("--time-limit", type=float, help="wall and CPU limit [s]")
     parser.add_argument("--memory-limit", type=float, help="memory limit [MB]")
-    parser.add_argument("--trajectory", type=Path, help="write the trajectory CSV here")
-    parser.add_argument("--stats", type=Path, help="write the statistics (JSON) here")
+    parser.add_argument("--trajectory", type=FilePath, help="write the trajectory CSV here")
+    parser.add_argument("--stats", type=FilePath, help="write the statistics (JSON) here")
     parser.add_argument("--planner", default="artiplan", choices=PLANNERS,
                         help="artiplan (default), or an external baseline")
     parser.add_argument("--epsilon", type=float, default=0.001,
@@ -137,13 +137,14 @@ def _progress(status: str, stats: Mapping[str, Any], message: str) -> None:
     print(f"artiplan plan: {status} " + " ".join(parts), file=sys.stderr)
 
 
-def _write_stats(path: Path, status: str, message: str, stats: Mapping[str, Any]) -> None:
+def _write_stats(path: str, status: str, message: str, stats: Mapping[str, Any]) -> None:
     import json
 
     doc = {"schema": 1, "status": status, "message": message,
            **{k: v for k, v in stats.items()
               if isinstance(v, (int, float, str, bool, list, dict))}}
-    path.write_text(json.dumps(doc, indent=2, sort_keys=True) + "\n")
+    with open(path, "w") as fh:
+        fh.write(json.dumps(doc, indent=2, sort_keys=True) + "\n")
 
 
 def _external(args: argparse.Namespace) -> int:
@@ -178,7 +179,8 @@ def _external(args: argparse.Namespace) -> int:
             text = f"; INVALID (artiplan validate): {report.reason}\n" + text
         print(text, end="")
         if args.out is not None:
-            args.out.write_text(text)
+            with open(args.out, "w") as fh:
+                fh.write(text)
         return int(ExitCode.OK if report.valid else ExitCode.INVALID_PLAN)
     from artiplan.search.api import PlanStatus
 

@@ -184,8 +184,3 @@ def _mean(xs: Any) -> float | None:
 def _pct(xs: Any) -> float | None:
     v = list(xs)
     return round(100.0 * sum(bool(x) for x in v) / len(v), 1) if v else None
-
-
-def with_tasks(config: FidelityConfig, tasks: int) -> FidelityConfig:
-    """A copy with another task count."""
-    return replace(config, tasks=tasks)

@@ -296,10 +296,6 @@ class Domain:
     loc: SourceLocation | None = _loc()
     warnings: tuple[str, ...] = field(default=(), compare=False, repr=False)
 
-    def operators_of(self, kind: OperatorKind) -> tuple[Operator, ...]:
-        """The operators of one kind, in file order."""
-        return tuple(o for o in self.operators if o.kind == kind)
-
 
 @dataclass(frozen=True)
 class InitValue:

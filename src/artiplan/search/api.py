@@ -14,7 +14,6 @@ from __future__ import annotations
 
 import time
 from collections.abc import Callable, Iterator
-from pathlib import Path
 
 from artiplan.errors import InvalidPlanError, UsageError
 from artiplan.pddl.task import Task
@@ -34,6 +33,7 @@ from artiplan.tolerances import VAL_EVENT_WINDOW, VAL_TIME_TOLERANCE
 
 TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
 if TYPE_CHECKING:
+    from pathlib import Path
     from typing import Any
 
 __all__ = ["OPTIONS", "PlanResult", "PlanStats", "PlanStatus", "PlannerConfig", "plan",
@@ -174,9 +174,7 @@ def plan(
     loading = Limits(time_limit, on_progress=None if on_progress is None else
                      lambda elapsed: on_progress(elapsed, PlanStats()))
     try:
-        task = load_task(str(domain) if isinstance(domain, Path) else domain,
-                         str(problem) if isinstance(problem, Path) else problem,
-                         loading.check if time_limit or on_progress else None)
+        task = load_task(domain, problem, loading.check if time_limit or on_progress else None)
     except LimitReached as exc:
         result = PlanResult(PlanStatus.TIMEOUT, message=f"{exc} (while grounding)")
         result.stats.total_s = time.perf_counter() - t0
@@ -348,26 +346,22 @@ class _Planning:
         found = fold_durative(Plan(tuple(TimedAction(round(at, 6), acts[a].name, acts[a].args)
                                          for a, at in zip(actions, fixed, strict=True))),
                               self.task.durative)
-        if not self.config.validate:
-            self.best = (found, None)
-            return True
-        report = self._validate(found)
-        if report.valid:
-            found = replace(found, events=tuple(report.events))
-            self.best = (found, report)
-            return True
-        self.stats.rejected_reasons.append(report.reason)
-        return False
+        return self._keep(found, with_events=True)
 
     def _accept(self, outcome: SearchOutcome) -> bool:
         """A goal node counts only if the validator agrees (else: searched on, counted)."""
-        found = extract_plan(self.ct, outcome)
+        return self._keep(extract_plan(self.ct, outcome))
+
+    def _keep(self, found: Plan, with_events: bool = False) -> bool:
+        """True, and ``found`` is the best plan, if the validator accepts it (or validation is
+        off; ``with_events``: the plan takes the validator's events); else the reason counts."""
         if not self.config.validate:
             self.best = (found, None)
             return True
         report = self._validate(found)
         if report.valid:
-            self.best = (found, report)
+            self.best = (replace(found, events=tuple(report.events)) if with_events else found,
+                         report)
             return True
         self.stats.rejected_reasons.append(report.reason)
         return False

@@ -144,8 +144,7 @@ class Search:
         lead = 2.0 * config.event_gap + 2.0 * config.epsilon
         self.threats = Threats(ct, kernel, lead) if ct.invariants else None
         self.waits = Waits(kernel, lead if ct.invariants else 0.0)
-        self.check_limits = check_limits
-        self.accept = accept
+        self.check_limits, self.accept = check_limits, accept
         self.prune = prune  # nodes it returns True for are dropped (the improvement's bound)
         # repair(actions, times) -> True when it made them a valid plan (timing repair)
         self.repair = repair

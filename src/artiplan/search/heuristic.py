@@ -21,7 +21,7 @@ import math
 import time
 from collections.abc import Callable, Sequence
 
-from artiplan.pddl.task import And, Atom, Condition, Not
+from artiplan.pddl.task import And, Atom, Condition, Effect, Not
 from artiplan.records import dataclass
 from artiplan.search.intervals import (
     Intervals,
@@ -31,13 +31,7 @@ from artiplan.search.intervals import (
     travel,
 )
 from artiplan.search.sideeffects import SideEffects
-from artiplan.semantics.compiled import (
-    ComparisonTable,
-    CompiledTask,
-    CondFn,
-    compile_condition,
-    written_fluents,
-)
+from artiplan.semantics.compiled import ComparisonTable, CompiledTask, CondFn, compile_condition
 from artiplan.semantics.walks import Linear, conjuncts, linear
 
 
@@ -161,13 +155,10 @@ class RateHeuristic(SideEffects):
                     self.movers.setdefault(fluent, []).append((p.index, lin))
         self.proc_lits = [self._lits(p.req, p.forb) for p in ct.processes]
         # actions that change what a process's numeric precondition reads (e.g. the held link)
-        writes = [written_fluents(a.effect) for a in ct.task.actions]
         self.enablers: list[tuple[int, ...]] = []
         for proc in ct.processes:
-            reads: set[int] = set()
-            for c in proc.pre_comps:
-                reads |= ct.comps.items[c].fluents
-            self.enablers.append(tuple(i for i, w in enumerate(writes) if w & reads))
+            reads = frozenset().union(*(ct.comps.items[c].fluents for c in proc.pre_comps))
+            self.enablers.append(tuple(a.index for a in ct.actions if a.writes & reads))
         self.jumps = self._jumps()
         self._side_effects()
         self.seconds = 0.0  # time spent in evaluate() [s]
@@ -208,20 +199,22 @@ class RateHeuristic(SideEffects):
             groups.append(GoalGroup(fn, used, fluent=fluent, target=target))
         return groups
 
-    def _relaxed_actions(self) -> None:
+    def _relax(self, req: int, forb: int, eff: Effect) -> None:
+        """Enter the next relaxed operator: its precondition's fact literals, and what it adds
+        (conditional adds too) and deletes."""
         n = self.n_facts
+        adds = set(eff.add) | {f for ce in eff.conditional for f in ce.effect.add}
+        self.pre_lits.append(self._lits(req, forb))
+        self.eff_lits.append(tuple(sorted(adds)) + tuple(n + f for f in sorted(set(eff.delete))))
+        for lit in self.pre_lits[-1]:
+            self.lit_users[lit].append(len(self.pre_lits) - 1)
+
+    def _relaxed_actions(self) -> None:
         self.pre_lits: list[tuple[int, ...]] = []
         self.eff_lits: list[tuple[int, ...]] = []
-        self.lit_users: list[list[int]] = [[] for _ in range(2 * n)]
-        for a in self.ct.actions:
-            pre = self._lits(a.req, a.forb)
-            eff_src = self.ct.task.actions[a.index].effect
-            adds = set(eff_src.add) | {f for ce in eff_src.conditional for f in ce.effect.add}
-            dels = set(eff_src.delete)
-            self.pre_lits.append(pre)
-            self.eff_lits.append(tuple(sorted(adds)) + tuple(n + f for f in sorted(dels)))
-            for lit in pre:
-                self.lit_users[lit].append(a.index)
+        self.lit_users: list[list[int]] = [[] for _ in range(2 * self.n_facts)]
+        for a in self.ct.actions:  # relaxed operator i is action i
+            self._relax(a.req, a.forb, self.ct.task.actions[a.index].effect)
         # Events that unblock actions (they delete a fact some action needs false, e.g. the
         # hands' reach timer's ``hands-ready``) are achievers too, free: they fire by
         # themselves once their fact preconditions hold (their clocks are left to the search's
@@ -234,16 +227,10 @@ class RateHeuristic(SideEffects):
         #: Relaxed operator index - n_actions -> index of the event in ``ct.events``.
         self.relaxed_events: list[int] = []
         for ev in self.ct.events:
-            eff_src = self.ct.task.events[ev.index].effect
-            dels = set(eff_src.delete)
-            if not any(blocking >> f & 1 for f in dels):
-                continue
-            adds = set(eff_src.add) | {f for ce in eff_src.conditional for f in ce.effect.add}
-            self.relaxed_events.append(ev.index)
-            self.pre_lits.append(self._lits(ev.req, ev.forb))
-            self.eff_lits.append(tuple(sorted(adds)) + tuple(n + f for f in sorted(dels)))
-            for lit in self.pre_lits[-1]:
-                self.lit_users[lit].append(len(self.pre_lits) - 1)
+            eff = self.ct.task.events[ev.index].effect
+            if any(blocking >> f & 1 for f in eff.delete):
+                self.relaxed_events.append(ev.index)
+                self._relax(ev.req, ev.forb, eff)
 
     def _jumps(self) -> dict[int, tuple[Jump, ...]]:
         """Events that read one fluent and shift or set it: wrap-arounds."""

@@ -157,9 +157,9 @@ def _probe(search: Search, horizon: Callable[[], float]) -> int:
         log: EventLog = []
         try:
             res = search.waits.until(child.time, child.facts, child.values, ct.goal,
-                                     ct.goal_comps,
-                                 log, child.active, search.config.max_wait_steps,
-                                 search.goal_margin(child), horizon=horizon())
+                                     ct.goal_comps, log, child.active,
+                                     search.config.max_wait_steps, search.goal_margin(child),
+                                     horizon=horizon())
         except InvalidPlanError:
             continue
         if res is None:

@@ -103,18 +103,24 @@ def travel(x: float, direction: float, target: Intervals, jumps: tuple[Jump, ...
         if contains(target, x):
             return dist
         entry = _next_point(x, direction, target)
-        trig, jump = math.inf, None
-        for j in jumps:
-            # a trigger only matters when moving into it (not when leaving its boundary)
-            p = _next_point(x + direction * 1e-9, direction, j.trigger)
-            if abs(p - x) < trig:
-                trig, jump = abs(p - x), j
+        trig, jump = _next_jump(x, direction, jumps)
         if abs(entry - x) <= trig or jump is None:
             return dist + abs(entry - x)
         y = x + direction * trig
         dist += trig
         x = jump.scale * y + jump.shift
     return math.inf
+
+
+def _next_jump(x: float, direction: float, jumps: tuple[Jump, ...]) -> tuple[float, Jump | None]:
+    """The distance to the first jump reached from ``x`` in ``direction``, and the jump (inf,
+    None if none). A trigger only counts when moving into it (not when leaving its boundary)."""
+    trig, jump = math.inf, None
+    for j in jumps:
+        p = _next_point(x + direction * 1e-9, direction, j.trigger)
+        if abs(p - x) < trig:
+            trig, jump = abs(p - x), j
+    return trig, jump
 
 
 def _next_point(x: float, direction: float, s: Intervals) -> float:
@@ -133,11 +139,7 @@ def _next_point(x: float, direction: float, s: Intervals) -> float:
 def displace(x: float, direction: float, dist: float, jumps: tuple[Jump, ...]) -> float:
     """Where ``x`` ends after moving ``dist`` (value units) in ``direction``, through jumps."""
     for _ in range(16):
-        trig, jump = math.inf, None
-        for j in jumps:
-            p = _next_point(x + direction * 1e-9, direction, j.trigger)
-            if abs(p - x) < trig:
-                trig, jump = abs(p - x), j
+        trig, jump = _next_jump(x, direction, jumps)
         if jump is None or trig > dist:
             return x + direction * dist
         dist -= trig

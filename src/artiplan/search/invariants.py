@@ -25,9 +25,8 @@ from __future__ import annotations
 
 import math
 
-from artiplan.search.waits import floor_grid
+from artiplan.search.waits import comparison_holds, floor_grid
 from artiplan.semantics.compiled import CompiledTask, Operator
-from artiplan.semantics.flow import STILL
 from artiplan.semantics.kernel import Kernel, Values
 
 
@@ -48,7 +47,8 @@ class Threats:
         items = k.ct.comps.items
         best, which = math.inf, []
         for c in self.comps:
-            if not items[c].fluents & flow.changing or not self._holds(c, values):
+            if not items[c].fluents & flow.changing or \
+                    not comparison_holds(self.ct, c, values, snapped=False):
                 continue
             dt = k.next_change(values, flow, (c,))
             if dt is None or not math.isfinite(dt):
@@ -74,12 +74,6 @@ class Threats:
         grid = self.ct.tol.grid
         end = floor_grid(t + dt - self.lead, grid)
         return (round(end - t, 9) if end > t + grid else 0.0), [], False
-
-    def _holds(self, cid: int, values: Values) -> bool:
-        """Truth of comparison ``cid`` at ``values`` (read as the kernel reads invariants)."""
-        item = self.ct.comps.items[cid]
-        p = STILL.poly(item, values)
-        return p is not None and self.ct.tol.point(item.op, p[0])
 
     def _saves(self, act: Operator, facts: int, values: Values, comps: tuple[int, ...],
                dt: float) -> bool:

@@ -169,22 +169,19 @@ class NumericHeuristic:
         for k, c in enumerate(self.conds):
             for f in c.fluents:
                 readers.setdefault(f, []).append(k)
+        written: set[int] = set()  # the fluents an action or an event writes
         for o in self.ops:
             if o.kind == "process":
                 o.conds = tuple(readers.get(o.fluent, ()))
             else:
                 eff = (task.actions if o.kind == "action" else task.events)[o.index].effect
                 moved, additive = _moved(eff)
+                written |= moved
                 o.conds = tuple(sorted({k for f in moved for k in readers.get(f, ())}))
                 o.additive = frozenset(k for k in o.conds if self.conds[k].fluents & moved
                                        <= additive)
         # conditions on clocks: fluents no action or event writes, moved by constant rates
         # only (a deadline); the time they leave bounds every wait before them
-        written: set[int] = set()
-        for o in self.ops:
-            if o.kind != "process":
-                eff = (task.actions if o.kind == "action" else task.events)[o.index].effect
-                written |= _moved(eff)[0]
         varying = {f for p in ct.processes for f, _, lin in p.rates
                    if lin is None or lin[0]}
         signs: dict[int, set[float]] = {}  # fluent -> signs of the constant rates moving it
@@ -275,11 +272,7 @@ class NumericHeuristic:
         c = self.conds[k]
         if c.gradient is not None:
             return c.gradient.get(fluent, 0.0)
-        x = values[fluent]
-        h = 1e-6 * max(1.0, abs(x))
-        up, down = list(values), list(values)
-        up[fluent], down[fluent] = x + h, x - h
-        return (c.p(tuple(up)) - c.p(tuple(down))) / (2.0 * h)
+        return _partial(c.p, values, fluent)
 
     # ----------------------------------------------------------------------------- evaluate
     def evaluate(self, facts: int, values: Values, active: tuple[int, ...]) -> Evaluation:
@@ -300,17 +293,11 @@ class NumericHeuristic:
 
     def _rate_change(self, o: _Op, values: Values, flow: dict[int, float]) -> float:
         """d/dt of operator ``o``'s rate along the current flow (its second order)."""
-        assert o.rate is not None
-        total = 0.0
+        rate, total = o.rate, 0.0
+        assert rate is not None
         for j in o.reads:
-            r = flow.get(j)
-            if not r:
-                continue
-            x = values[j]
-            h = 1e-6 * max(1.0, abs(x))
-            up, down = list(values), list(values)
-            up[j], down[j] = x + h, x - h
-            total += (o.rate(tuple(up)) - o.rate(tuple(down))) / (2.0 * h) * r
+            if flow.get(j):  # (a plain loop: sum() may round differently)
+                total += _partial(rate, values, j) * flow[j]
         return total
 
     def _evaluate(self, facts: int, values: Values, active: tuple[int, ...]) -> Evaluation:
@@ -504,6 +491,15 @@ class NumericHeuristic:
         hold = min(holds, default=math.inf)
         return Evaluation(h, order, tuple(waits), needed, unsat,
                           hold if math.isfinite(hold) else 0.0)
+
+
+def _partial(fn: PFn, values: Values, j: int) -> float:
+    """``d fn / d v_j`` at ``values`` (central difference, step 1e-6 relative)."""
+    x = values[j]
+    h = 1e-6 * max(1.0, abs(x))
+    up, down = list(values), list(values)
+    up[j], down[j] = x + h, x - h
+    return (fn(tuple(up)) - fn(tuple(down))) / (2.0 * h)
 
 
 def _time_to(need: float, r: float, r2: float) -> float | None:

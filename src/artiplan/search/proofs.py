@@ -70,18 +70,8 @@ def _enabled(cond: Condition, pos: set[int], neg: set[int]) -> bool:
     if lits is None:
         return False
     req, forb = lits
-    return all(i in pos for i in _bits(req)) and all(i in neg for i in _bits(forb))
-
-
-def _bits(mask: int) -> list[int]:
-    out = []
-    i = 0
-    while mask:
-        if mask & 1:
-            out.append(i)
-        mask >>= 1
-        i += 1
-    return out
+    return all(i in pos for i in range(req.bit_length()) if req >> i & 1) and \
+        all(i in neg for i in range(forb.bit_length()) if forb >> i & 1)
 
 
 def fluent_bounds(task: Task) -> tuple[list[Interval], set[int], set[int]]:
@@ -152,19 +142,11 @@ def _possible(cond: Condition, b: list[Interval], pos: set[int], neg: set[int]) 
     if isinstance(cond, Not):
         return {not v for v in _possible(cond.operand, b, pos, neg)}
     if isinstance(cond, (And, Or)):
+        # And: true if every part can be, false if one can; Or: the dual
         parts = [_possible(p, b, pos, neg) for p in cond.parts]
-        out = set()
-        if isinstance(cond, And):
-            if all(True in p for p in parts):
-                out.add(True)
-            if any(False in p for p in parts):
-                out.add(False)
-        else:
-            if any(True in p for p in parts):
-                out.add(True)
-            if all(False in p for p in parts):
-                out.add(False)
-        return out
+        every, one = (True, False) if isinstance(cond, And) else (False, True)
+        out = {one} if any(one in p for p in parts) else set()
+        return out | {every} if all(every in p for p in parts) else out
     assert isinstance(cond, Comparison)
     return _comparison_possible(cond, b)
 
@@ -214,10 +196,6 @@ def _show(cond: Condition, task: Task) -> str:
     if isinstance(cond, Atom):
         return task.facts[cond.fact]
     if isinstance(cond, Comparison):
-        names = sorted(task.fluents[f] for f in _fluents(cond))
+        names = sorted(task.fluents[f] for f in fluents_of(cond.left) | fluents_of(cond.right))
         return f"({cond.op} ...) on {', '.join(names)}"
     return type(cond).__name__.lower()
-
-
-def _fluents(cond: Comparison) -> set[int]:
-    return set(fluents_of(cond.left) | fluents_of(cond.right))

@@ -35,11 +35,7 @@ class SideEffects:
     _active_moves: Moves
 
     def _side_effects(self) -> None:
-        """Processes switched on together (same trigger fact) and the goal fluents they move.
-
-        Choosing a process to reach one goal fluent also runs its companions (a rotation carries
-        the links tip-ward): reaching the goal that way may undo goals already reached.
-        """
+        """Processes switched on together (same trigger fact) and the goal fluents they move."""
         self.goal_of_fluent = {g.fluent: gi for gi, g in enumerate(self.groups)
                                if g.fluent is not None}
         self.proc_key: list[int] = []
@@ -50,9 +46,8 @@ class SideEffects:
             for fluent, _, lin in p.rates:
                 if lin is not None and fluent in self.goal_of_fluent:
                     moves.setdefault(key, {}).setdefault(fluent, []).append(lin)
-        self.key_moves: dict[int, tuple[tuple[int, tuple[Linear, ...]], ...]] = {
-            k: tuple((f, tuple(ls)) for f, ls in sorted(v.items())) for k, v in moves.items()
-        }
+        self.key_moves: dict[int, Moves] = {
+            k: tuple((f, tuple(ls)) for f, ls in sorted(v.items())) for k, v in moves.items()}
         # how many goal fluents the processes an action switches on move (its "reach"):
         # among helpful actions, the one that moves most goals is tried first (base of a chain)
         self.reach: list[int] = []
@@ -80,7 +75,7 @@ class SideEffects:
         visit(lits, 0)
         return tuple(out)
 
-    def _after_moves(self, chain: tuple[int, ...]) -> tuple[tuple[int, tuple[Linear, ...]], ...]:
+    def _after_moves(self, chain: tuple[int, ...]) -> Moves:
         """Goal-fluent moves of the processes running after ``chain`` is applied now."""
         found = self._after.get(chain)
         if found is None:
@@ -93,7 +88,7 @@ class SideEffects:
             found = self._after[chain] = self._moves_of(self.active_fn(facts, values))
         return found
 
-    def _moves_of(self, active: tuple[int, ...]) -> tuple[tuple[int, tuple[Linear, ...]], ...]:
+    def _moves_of(self, active: tuple[int, ...]) -> Moves:
         """Goal fluents the running processes move, with their rates (cached per set)."""
         found = self._moves_cache.get(active)
         if found is None:

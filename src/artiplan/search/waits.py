@@ -13,12 +13,20 @@ from __future__ import annotations
 
 import math
 
-from artiplan.semantics.compiled import CondFn
+from artiplan.semantics.compiled import CompiledTask, CondFn
 from artiplan.semantics.flow import STILL, Flow
 from artiplan.semantics.kernel import EventLog, InvariantError, Kernel, Values
 
 #: (time [s], facts, values, active processes) at the end of a wait.
 Arrival = tuple[float, int, Values, tuple[int, ...]]
+
+
+def comparison_holds(ct: CompiledTask, cid: int, values: Values, snapped: bool) -> bool:
+    """Truth of comparison ``cid`` at ``values``: ``snapped`` (as a strict task reads its
+    goal), else with the task's tolerances (as invariants are read)."""
+    item = ct.comps.items[cid]
+    p = STILL.poly(item, values)
+    return p is not None and (ct.tol.snapped if snapped else ct.tol.point)(item.op, p[0])
 
 
 def grid_after(t: float, grid: float) -> float:
@@ -87,7 +95,7 @@ class Waits:
         return end, facts2, values2, act
 
     def _advance(self, t: float, facts: int, values: Values, until: float, log: EventLog,
-                 active: tuple[int, ...]) -> tuple[float, int, Values, tuple[int, ...]]:
+                 active: tuple[int, ...]) -> Arrival:
         """Let time pass to ``until`` [s]; if an invariant would fail on the way, stop
         :attr:`lead` before (or at the last grid time before; raise if that is no later than
         ``t`` + a grid step)."""
@@ -123,14 +131,12 @@ class Waits:
         items = k.ct.comps.items
         holding = tuple(sorted(c for c in comps if items[c].fluents & flow.changing
                                and self._holds(c, values)))
-        ends: list[float] = []
-        dt = self._change(values, flow, holding) if holding else None
-        if dt is not None and math.isfinite(dt):
-            ends.append(floor_grid(t + dt, self.grid))
         moving = tuple(sorted(c for c in triggers if items[c].fluents & flow.changing))
-        dt = self._change(values, flow, moving) if moving else None
-        if dt is not None and math.isfinite(dt):
-            ends.append(floor_grid(t + dt - gap, self.grid))
+        ends: list[float] = []
+        for watch, early in ((holding, 0.0), (moving, gap)):
+            dt = self._change(values, flow, watch) if watch else None
+            if dt is not None and math.isfinite(dt):
+                ends.append(floor_grid(t + dt - early, self.grid))
         end = min(ends, default=math.inf)
         if end == math.inf or end <= t + self.grid:
             return None
@@ -191,12 +197,7 @@ class Waits:
 
     def _holds(self, cid: int, values: Values) -> bool:
         """Truth of goal comparison ``cid`` at ``values`` (as the goal is read)."""
-        item = self.kernel.ct.comps.items[cid]
-        p = STILL.poly(item, values)
-        if p is None:
-            return False
-        ct = self.kernel.ct
-        return ct.tol.snapped(item.op, p[0]) if ct.strict else ct.tol.point(item.op, p[0])
+        return comparison_holds(self.kernel.ct, cid, values, self.kernel.ct.strict)
 
     def _watch(self, flow: Flow, cond_comps: frozenset[int], facts: int) -> tuple[int, ...]:
         """``cond``'s comparisons on changing fluents, and those that can change the dynamics

@@ -25,30 +25,10 @@ _EXPORTS = {
     "validate": "validator", "evaluate": "walks", "format_condition": "walks",
     "format_expr": "walks", "holds": "walks", "robustness": "walks",
 }
-__all__ = [
-    "CompiledTask",
-    "EventError",
-    "Kernel",
-    "Plan",
-    "Segment",
-    "State",
-    "TimedAction",
-    "TimedEvent",
-    "Trajectory",
-    "TrajectoryRow",
-    "ValidationReport",
-    "ZenoError",
-    "compile_task",
-    "evaluate",
-    "format_condition",
-    "format_expr",
-    "holds",
-    "interferes",
-    "resolve",
-    "robustness",
-    "simulate",
-    "validate",
-]
+__all__ = ["CompiledTask", "EventError", "Kernel", "Plan", "Segment", "State", "TimedAction",
+           "TimedEvent", "Trajectory", "TrajectoryRow", "ValidationReport", "ZenoError",
+           "compile_task", "evaluate", "format_condition", "format_expr", "holds", "interferes",
+           "resolve", "robustness", "simulate", "validate"]
 
 if TYPE_CHECKING:
     from typing import Any

@@ -13,6 +13,7 @@ Compiling costs a few milliseconds per hundred operators and happens once per ta
 
 from __future__ import annotations
 
+import operator
 from collections.abc import Callable
 
 from artiplan.pddl.task import (
@@ -132,6 +133,10 @@ def fact_literals(cond: Condition) -> tuple[int, int] | None:
 
 _RHS = {"assign": "{e}", "increase": "W[{i}] + {e}", "decrease": "W[{i}] - {e}",
         "scale-up": "W[{i}] * {e}", "scale-down": "W[{i}] / {e}"}
+#: The same updates as functions ``(old value, right-hand side) -> new value``.
+UPDATE: dict[str, Callable[[float, float], float]] = {
+    "assign": lambda _old, rhs: rhs, "increase": operator.add, "decrease": operator.sub,
+    "scale-up": operator.mul, "scale-down": operator.truediv}
 
 
 def _effect_lines(eff: Effect, indent: str, cond_src: Callable[[Condition], str],
@@ -281,10 +286,6 @@ class CompiledTask:
     #: dynamic comparisons read by events other than re-arms (the ones actions keep clear of)
     spaced: frozenset[int] = frozenset()
 
-    @property
-    def n_fluents(self) -> int:
-        return len(self.task.fluents)
-
 
 def _operator(i: int, op: GroundAction, comps: ComparisonTable, tol: Tolerances,
               strict: bool = False) -> Operator:
@@ -312,13 +313,9 @@ def guard_facts(task: Task) -> tuple[int, frozenset[int]]:
 
 
 def _guard_facts(task: Task) -> tuple[int, frozenset[int]]:
-    others: set[int] = set(condition_parts(task.goal)[0])
-    for a in task.actions:
-        others |= condition_parts(a.precondition)[0]
-    for p in task.processes:
-        others |= condition_parts(p.precondition)[0]
-    for c in task.invariants:
-        others |= condition_parts(c)[0]
+    read = [task.goal, *task.invariants, *(o.precondition for o in task.actions),
+            *(p.precondition for p in task.processes)]
+    others: set[int] = set().union(*(condition_parts(c)[0] for c in read))
     candidates: set[int] = set()
     for e in task.events:
         forb = (fact_literals(e.precondition) or (0, 0))[1]

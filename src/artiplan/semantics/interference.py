@@ -41,14 +41,8 @@ def footprint(action: GroundAction) -> Footprint:
             rf |= f
             rn |= n
             stack.append(ce.effect)
-    return Footprint(
-        frozenset(rf),
-        frozenset(rn),
-        frozenset(adds),
-        frozenset(dels),
-        frozenset(additive - assigned),
-        frozenset(assigned),
-    )
+    return Footprint(frozenset(rf), frozenset(rn), frozenset(adds), frozenset(dels),
+                     frozenset(additive - assigned), frozenset(assigned))
 
 
 def interferes(a: GroundAction, b: GroundAction) -> bool:

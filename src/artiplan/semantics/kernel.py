@@ -30,7 +30,7 @@ from artiplan.errors import InvalidPlanError
 from artiplan.pddl.task import Condition, GroundAction, Task
 from artiplan.records import dataclass, field
 from artiplan.semantics import polynomial as P
-from artiplan.semantics.compiled import Comparison, CompiledTask, Operator
+from artiplan.semantics.compiled import UPDATE, Comparison, CompiledTask, Operator
 from artiplan.semantics.flow import DT_MIN, STILL, Flow, NumericFlow, Shape, make_flow, shape_of
 from artiplan.semantics.walks import evaluate, truth
 
@@ -39,6 +39,8 @@ if TYPE_CHECKING:
     from typing import Any
 
 Values = tuple[float, ...]
+#: The running processes' indices, ascending.
+Active = tuple[int, ...]
 #: ``(time [s], event index)`` in firing order.
 EventLog = list[tuple[float, int]]
 
@@ -122,14 +124,13 @@ class Kernel:
         self._singles = _Rows.of([c for c, it in enumerate(items) if it.single is not None],
                                  items)
         self._other = [c for c, it in enumerate(items) if it.single is None]
+        # per comparison, the processes and the events whose preconditions read it
         self._procs_of: dict[int, list[int]] = {}
-        for p in ct.processes:
-            for c in p.pre_comps:
-                self._procs_of.setdefault(c, []).append(p.index)
         self._events_of: dict[int, list[int]] = {}
-        for e in ct.events:
-            for c in e.pre_comps:
-                self._events_of.setdefault(c, []).append(e.index)
+        for readers_of, ops in ((self._procs_of, ct.processes), (self._events_of, ct.events)):
+            for op in ops:
+                for c in op.pre_comps:
+                    readers_of.setdefault(c, []).append(op.index)
         self._event_reads = [frozenset().union(*(items[c].fluents for c in e.pre_comps))
                              for e in ct.events]
         # The fact literals (required, forbidden) of whatever reads each dynamic comparison; a
@@ -251,8 +252,7 @@ class Kernel:
 
         return truth(cond, facts, comparison)
 
-    def _settle_active(self, facts: int, values: Values, point: tuple[int, ...]) -> tuple[int,
-                                                                                           ...]:
+    def _settle_active(self, facts: int, values: Values, point: Active) -> Active:
         near = self.near_comps(values)
         if not near:
             return point
@@ -293,8 +293,8 @@ class Kernel:
                 raise InvariantError(cond, t, self.ct.task)
 
     # ------------------------------------------------------------------------------ instants
-    def settle(self, t: float, facts: int, values: Values, log: EventLog) -> tuple[int, Values,
-                                                                                  tuple[int, ...]]:
+    def settle(self, t: float, facts: int, values: Values, log: EventLog
+               ) -> tuple[int, Values, Active]:
         """Fire every event triggered at time ``t`` [s], cascading to a fixpoint (facts set by
         active processes applied too). Returns the facts, values and the processes running
         just after ``t``. Raises :class:`EventError` or :class:`ZenoError`."""
@@ -307,11 +307,10 @@ class Kernel:
             for p in act:
                 quirk_add |= procs[p].adds
                 quirk_del |= procs[p].deletes
-            if quirk_add or quirk_del:
-                new = (facts & ~quirk_del) | quirk_add
-                if new != facts:
-                    facts = new
-                    continue
+            new = (facts & ~quirk_del) | quirk_add
+            if new != facts:
+                facts = new
+                continue
             near = self.near_comps(values)
             edge = {e for c in near for e in self._events_of.get(c, ())} if near else set()
             changing = flow.changing if edge else frozenset()
@@ -354,16 +353,7 @@ class Kernel:
             return (facts & ~dele) | add, values
         out = list(values)
         for i, kind, rhs in updates:
-            if kind == "assign":
-                out[i] = rhs
-            elif kind == "increase":
-                out[i] += rhs
-            elif kind == "decrease":
-                out[i] -= rhs
-            elif kind == "scale-up":
-                out[i] *= rhs
-            else:
-                out[i] /= rhs
+            out[i] = UPDATE[kind](out[i], rhs)
         return (facts & ~dele) | add, tuple(out)
 
     # ------------------------------------------------------------------------ passing time
@@ -429,8 +419,8 @@ class Kernel:
 
     def advance(
         self, t: float, facts: int, values: Values, until: float, log: EventLog,
-        active: tuple[int, ...], segments: list[Segment] | None = None,
-    ) -> tuple[int, Values, tuple[int, ...]]:
+        active: Active, segments: list[Segment] | None = None,
+    ) -> tuple[int, Values, Active]:
         """Let time pass from ``t`` to ``until`` [s] with ``active`` running from ``t``.
 
         Events fire at their exact times (the active processes are recomputed there); at
@@ -566,10 +556,7 @@ def _buckets(ops: list[tuple[int, int]]) -> tuple[Buckets, list[int]]:
             buckets.setdefault(req & -req, []).append(index)
         else:
             always.append(index)
-    mask = 0
-    for bit in buckets:
-        mask |= bit
-    return (mask, buckets), always
+    return (sum(buckets), buckets), always  # distinct single bits: their sum is their union
 
 
 def _candidates(facts: int, buckets: Buckets, always: list[int]) -> list[int]:

@@ -18,9 +18,9 @@ Times are written with up to 6 decimals (trailing zeros dropped, at least one de
 from __future__ import annotations
 
 import functools
+import os
 import re
 from collections.abc import Collection, Iterable
-from pathlib import Path
 
 from artiplan.errors import InputError, SourceLocation
 from artiplan.semantics.plan import Plan, TimedAction, TimedEvent
@@ -126,17 +126,18 @@ def _parse_line(line: str, lineno: int, filename: str) -> TimedAction | float:
     return result
 
 
-def read_plan(path: str | Path, event_names: Collection[str] = ()) -> Plan:
+def read_plan(path: str | os.PathLike[str], event_names: Collection[str] = ()) -> Plan:
     """Read a plan file (VAL or ENHSP ``-sp`` format)."""
-    p = Path(path)
+    name = os.fspath(path)
     try:
-        text = p.read_text()
+        with open(name) as fh:
+            text = fh.read()
     except OSError as exc:
-        raise InputError(f"cannot read plan {str(p)!r}: {exc.strerror}") from None
-    return parse_plan(text, str(p), event_names)
+        raise InputError(f"cannot read plan {name!r}: {exc.strerror}") from None
+    return parse_plan(text, name, event_names)
 
 
-def read_plan_for(path: str | Path, event_names: Collection[str]) -> Plan:
+def read_plan_for(path: str | os.PathLike[str], event_names: Collection[str]) -> Plan:
     """Read a plan file the way ``artiplan validate`` does: as VAL does (a line naming an event
     stays an action, so the validator reports it as a bad operator), except in ENHSP's files
     (recognised by ``@PlanEND`` or ``-----waiting----``), whose event lines become events."""
@@ -176,9 +177,10 @@ def format_plan(plan: Plan, events: bool = True, end_comment: bool = False) -> s
     return "\n".join(lines) + ("\n" if lines else "")
 
 
-def write_plan(plan: Plan, path: str | Path, events: bool = True) -> None:
+def write_plan(plan: Plan, path: str | os.PathLike[str], events: bool = True) -> None:
     """Write ``plan`` in VAL's format (with event comment lines when ``events``)."""
-    Path(path).write_text(format_plan(plan, events))
+    with open(path, "w") as fh:
+        fh.write(format_plan(plan, events))
 
 
 def with_events(plan: Plan, events: Iterable[TimedEvent]) -> Plan:

@@ -197,12 +197,6 @@ class PlanStats(Mapping[str, "Any"]):
         for k, v in counts.items():
             setattr(self, k, getattr(self, k) + v)
 
-    def as_dict(self) -> dict[str, Any]:
-        """Every field, JSON-ready (``margins`` as a dict)."""
-        import dataclasses
-
-        return dataclasses.asdict(self)
-
     def __getitem__(self, key: str) -> Any:
         if key not in _STAT_KEYS:
             raise KeyError(key)

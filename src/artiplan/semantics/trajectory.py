@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import bisect
 import math
-from pathlib import Path
 
 from artiplan.pddl.task import fluent_column
 from artiplan.records import dataclass, field
@@ -15,9 +14,9 @@ from artiplan.semantics.state import State
 
 TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
 if TYPE_CHECKING:
+    from pathlib import Path
     from typing import Literal
 
-if TYPE_CHECKING:
     RowKind = Literal["init", "action", "event", "sample"]
 
 

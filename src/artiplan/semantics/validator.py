@@ -35,7 +35,7 @@ from artiplan.records import dataclass, field
 from artiplan.semantics.cache import per_task
 from artiplan.semantics.compiled import CompiledTask, Operator, compile_task
 from artiplan.semantics.interference import interferes
-from artiplan.semantics.kernel import EventError, EventLog, InvariantError, Kernel, Segment
+from artiplan.semantics.kernel import Active, EventError, EventLog, InvariantError, Kernel, Segment
 from artiplan.semantics.plan import Plan, TimedAction, TimedEvent, expand_durative
 from artiplan.semantics.state import State
 from artiplan.semantics.trajectory import Trajectory, TrajectoryRow
@@ -142,8 +142,7 @@ class _Run:
             self.traj.rows.append(TrajectoryRow(t, ev.signature, values, "event"))
 
     def advance(self, t: float, facts: int, values: tuple[float, ...], until: float,
-                active: tuple[int, ...], index: int) -> tuple[int, tuple[float, ...],
-                                                          tuple[int, ...]]:
+                active: Active, index: int) -> tuple[int, tuple[float, ...], Active]:
         log: EventLog = []
         segments: list[Segment] = []
         try:
@@ -250,7 +249,7 @@ def run_plan(
         return ValidationReport(False, str(exc), "bad-operator", 0, 0.0)
     traj = run.traj
     traj.rows.append(TrajectoryRow(0.0, "init", ct.init_values, "init"))
-    report = ValidationReport(True, trajectory=traj, events=traj.events)
+    report = ValidationReport(True)
     try:
         if check and not initial_events:
             enabled = enabled_initial_events(task, tol)
@@ -275,21 +274,18 @@ def run_plan(
         traj.end = t
     except _Failure as f:
         report = f.report
-        report.trajectory, report.events = traj, traj.events
     except InvariantError as exc:
         report = ValidationReport(False, str(exc), "invariant", time=exc.time,
                                   condition=format_condition(exc.condition, task))
-        report.trajectory, report.events = traj, traj.events
     except (InvalidPlanError, ZeroDivisionError) as exc:  # Zeno, unsettled events, x / 0
         at = traj.rows[-1].time if traj.rows else 0.0
         what = "division by zero" if isinstance(exc, ZeroDivisionError) else str(exc)
         report = ValidationReport(False, f"{what} (after time {at:.6f})", "error", time=at)
-        report.trajectory, report.events = traj, traj.events
+    report.trajectory, report.events = traj, traj.events  # everything up to a failure too
     return report
 
 
-def _run_happenings(run: _Run, plan: Plan) -> tuple[float, int, tuple[float, ...],
-                                                    tuple[int, ...]]:
+def _run_happenings(run: _Run, plan: Plan) -> tuple[float, int, tuple[float, ...], Active]:
     """Every happening in turn; returns the time, facts, values and active processes after
     the last one (or at the plan's explicit end)."""
     ct, kernel = run.ct, run.kernel

@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import functools
 import math
+import operator
 from collections.abc import Callable, Sequence
 from types import CodeType
 
@@ -129,16 +130,9 @@ def source_definitions(source: str) -> dict[str, Any]:
     return namespace
 
 
-def _apply(op: str, a: float, b: float) -> float:
-    if op == "+":
-        return a + b
-    if op == "-":
-        return a - b
-    if op == "*":
-        return a * b
-    if op == "/":
-        return a / b
-    return power(a, b)
+#: The binary operators of numeric expressions (``^`` real: :func:`power`).
+BINARY: dict[str, Callable[[float, float], float]] = {
+    "+": operator.add, "-": operator.sub, "*": operator.mul, "/": operator.truediv, "^": power}
 
 
 def evaluate(expr: NumExpr, values: Sequence[float]) -> float:
@@ -149,7 +143,7 @@ def evaluate(expr: NumExpr, values: Sequence[float]) -> float:
         return values[expr.index]
     if isinstance(expr, Neg):
         return -evaluate(expr.operand, values)
-    return _apply(expr.op, evaluate(expr.left, values), evaluate(expr.right, values))
+    return BINARY[expr.op](evaluate(expr.left, values), evaluate(expr.right, values))
 
 
 def truth(cond: Condition, facts: int, comparison: Callable[[Comparison], bool]) -> bool:

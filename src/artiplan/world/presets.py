@@ -6,7 +6,7 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import dataclass
 from types import MappingProxyType
 
 
@@ -40,10 +40,6 @@ class JointPhysics:
     def joint_damping(self, carried: int) -> float:
         """Damping [N m s/rad] of a joint whose subchain has ``carried`` links."""
         return self.damping * (carried**2 if self.scale_by_load else 1)
-
-    def with_(self, **changes: float | bool) -> JointPhysics:
-        """A copy with some fields changed."""
-        return replace(self, **changes)  # type: ignore[arg-type]
 
 
 #: A 0.05 kg, 0.15 m link held horizontal feels 0.037 N m; 3.0 N m s/rad -> ~0.7 deg/s.
