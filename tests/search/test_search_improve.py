@@ -49,3 +49,25 @@ def test_better_prefers_makespan_then_actions_and_prices_extra_actions() -> None
     assert not better(10.0, 3, 10.0, 3)
     assert not better(9.9, 5, 10.0, 3)  # 1% shorter is not worth two more actions
     assert better(9.0, 5, 10.0, 3, gain=0.05)
+
+
+def test_the_improvement_budget_follows_the_search_that_found_the_plan() -> None:
+    # failed attempts before the winner (another heuristic) do not widen the phase
+    from artiplan.search.engine import SearchConfig
+    from artiplan.search.improve import ImproveConfig, improve
+    from artiplan.search.limits import Limits
+    from artiplan.semantics import Kernel, compile_task
+    from artiplan.semantics.results import PlanStats
+
+    task = _task(3, EncodingOptions("ng"), 3)
+    first = plan_task(task, time_limit=60, improve=False)
+    assert first.plan is not None
+    ct = compile_task(task)
+    budgets = []
+    for expanded in (None, 12, 400):
+        stats = PlanStats(expanded=1000)
+        improve(ct, Kernel(ct), SearchConfig(), Limits(60, None), first.plan, stats,
+                lambda outcome: first.plan, lambda found: None, ImproveConfig(maximum=2000),
+                expanded=expanded)
+        budgets.append(stats.improve_budget)
+    assert budgets == [2000, 36, 1200]  # 3 x 1000 capped; 3 x 12; 3 x 400

@@ -229,6 +229,7 @@ class _Planning:
                              on_progress=self._report if on_progress else None)
         self.best: tuple[Plan, ValidationReport | None] | None = None
         self.winner = FIRST[0]  # the attempt that found the first plan
+        self.winner_expanded = 0  # and its expansions (they set the improvement budget)
 
     def _report(self, elapsed: float) -> None:
         assert self.on_progress is not None
@@ -298,6 +299,7 @@ class _Planning:
                     stats.add(search.stats)
                 if outcome.goal is not None or outcome.repaired:
                     self.winner = attempt
+                    self.winner_expanded = int(search.stats["expanded"])
                     break
                 if outcome.exhausted:
                     exhausted.add(kind)
@@ -423,7 +425,7 @@ class _Planning:
 
         best, report = improve(self.ct, self.kernel, self._attempt(winner)[1], self.limits,
                                first, self.stats, lambda outcome: extract_plan(self.ct, outcome),
-                               check, heuristic=heuristic)
+                               check, heuristic=heuristic, expanded=self.winner_expanded)
         self.stats.add(self.kernel.counters)
         self.stats.improve_s = time.perf_counter() - t - (self.stats.validate_s - validate_before)
         self.stats.first_makespan, self.stats.first_length = first.makespan, len(first.actions)

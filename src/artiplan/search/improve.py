@@ -75,16 +75,20 @@ def improve(
     ct: CompiledTask, kernel: Kernel, config: SearchConfig, limits: Limits, first: Plan,
     stats: PlanStats, extract: Callable[[SearchOutcome], Plan],
     validate: Callable[[Plan], ValidationReport | None], settings: ImproveConfig = ImproveConfig(),
-    heuristic: Callable[..., Heuristic] = RateHeuristic,
+    heuristic: Callable[..., Heuristic] = RateHeuristic, expanded: int | None = None,
 ) -> tuple[Plan, ValidationReport | None]:
     """Search for a plan better than ``first``; returns it with its validator report (None
     when ``first`` is kept: the caller validated it already). The ``improve_*`` statistics
-    go to ``stats`` (the first search's ``expanded`` there sets the budget).
+    go to ``stats``. The budget is ``settings.factor`` times ``expanded``, the expansions of
+    the search that found ``first`` (default: ``stats.expanded``, every search so far): the
+    phase searches with that search's heuristic, and attempts that failed before it (another
+    heuristic, a coarser grid) say nothing about how hard a better plan is to find.
 
     ``validate(plan)`` returns a report, or None when validation is off (candidates are then
     trusted, as the first plan was).
     """
-    budget = int(min(settings.maximum, max(settings.minimum, settings.factor * stats.expanded)))
+    done = stats.expanded if expanded is None else expanded
+    budget = int(min(settings.maximum, max(settings.minimum, settings.factor * done)))
     best = _Best(first.makespan, len(first.actions))
     candidates: list[Plan] = []
     stats.improve_budget, stats.improve_expanded = budget, 0

@@ -161,8 +161,6 @@ def repair_times(ct: CompiledTask, kernel: Kernel, actions: Sequence[int],
 
 def _solve(prob: TimingProblem, settings: Repair,
            check: Callable[[], None] | None) -> list[float] | None:
-    from scipy.optimize import minimize  # imported here: only general domains need it
-
     if not prob.first:
         return None
     mu = settings.margin
@@ -171,6 +169,9 @@ def _solve(prob: TimingProblem, settings: Repair,
         return prob.times(prob.x0)
     if min(start) <= -FAILED:
         return None
+
+    # imported only now: most repairs end above (scipy.optimize costs ~0.6-1 s CPU to import)
+    from scipy.optimize import minimize
 
     found: list[list[float]] = []
 
