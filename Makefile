@@ -6,7 +6,7 @@ STAMP := $(VENV)/.installed
 # Headless rendering for MuJoCo (EGL via Mesa; OSMesa as fallback, see scripts/setup-system.sh).
 export MUJOCO_GL ?= egl
 
-.PHONY: setup system demo test lint typecheck check clean
+.PHONY: setup bytecode system demo test lint typecheck check clean
 
 setup: $(STAMP)
 
@@ -19,10 +19,15 @@ $(STAMP): pyproject.toml scripts/setup-system.sh
 	$(BIN)/pip install -q --no-deps 'robosuite==1.5.2'
 	touch $(STAMP)
 
-demo: setup
+# Bytecode for src even where PYTHONDONTWRITEBYTECODE is set (as on these machines): without
+# it every artiplan process compiles its ~130 modules again (0.36 s instead of 0.15 s).
+bytecode: $(STAMP)
+	$(BIN)/python -m compileall -q src
+
+demo: setup bytecode
 	$(BIN)/artiplan demo -o demo-out
 
-test: setup
+test: setup bytecode
 	$(BIN)/python -m pytest -q -m "not slow or ci" --timeout=600
 
 test-all: setup
