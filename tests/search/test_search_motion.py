@@ -88,6 +88,24 @@ def test_point_time_is_the_bang_bang_optimum() -> None:
     assert first == pytest.approx((100.0 - 54.0) / 18.0, rel=1e-6)
 
 
+def test_point_time_is_symmetric_under_mirroring() -> None:
+    """Negating positions and speeds and swapping the two rates mirrors a peak into a valley:
+    the least time is the same and the first phase's direction flips."""
+    import random
+
+    rnd = random.Random(7)
+    for _ in range(300):
+        dist, y0, yf = rnd.uniform(-50, 50), rnd.uniform(-10, 10), rnd.uniform(-10, 10)
+        al, be = rnd.uniform(0.2, 4.0), rnd.uniform(0.2, 4.0)
+        vhi = rnd.uniform(max(y0, yf, 0.0) + 0.1, 20.0)
+        vlo = rnd.uniform(-20.0, min(y0, yf, 0.0) - 0.1)
+        a = point_time(dist, y0, yf, al, be, vhi, vlo)
+        b = point_time(-dist, -y0, -yf, be, al, -vlo, -vhi)
+        assert a.time == pytest.approx(b.time, rel=1e-9, abs=1e-9)
+        assert a.first == pytest.approx(b.first, rel=1e-9, abs=1e-9)
+        assert a.up != b.up
+
+
 def test_a_tabulated_rate_agrees_with_the_closed_form_and_sees_drag() -> None:
     up = Rate(lambda w: 2.0 + 1e-9 * w * w, -20.0, 20.0)  # nearly constant: tabulated
     down = Rate(lambda w: -2.0 - 1e-9 * w * w, -20.0, 20.0)

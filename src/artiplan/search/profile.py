@@ -46,36 +46,30 @@ def point_time(dist: float, y0: float, yf: float, al: float, be: float,
     (a cruise at a cap). Bang-bang with one switch: accelerate then brake (a peak), or brake
     then accelerate (a valley, through reverse if need be); time inf if neither exists."""
     al, be = max(al, FLOOR), max(be, FLOOR)
-    best = NONE
+    best = _peak(dist, y0, yf, al, be, vhi, True)
+    # A valley is the peak of the mirrored motion (positions, speeds and rates negated).
+    down = _peak(-dist, -y0, -yf, be, al, -vlo, False)
+    return down if down.time < best.time else best
+
+
+def _peak(dist: float, y0: float, yf: float, al: float, be: float, vhi: float,
+          up: bool) -> Profile:
+    """Accelerate (rate ``al``), then brake (``be``), peaking at or above both end speeds,
+    cruising at ``vhi`` if the peak would pass it; ``up`` labels the profile."""
     s2 = (2.0 * al * be * dist + be * y0 * y0 + al * yf * yf) / (al + be)
     top = max(y0, yf)
-    if s2 >= 0.0:
-        s = math.sqrt(s2)
-        vp = -s if -s >= top - 1e-12 else s if s >= top - 1e-12 else None
-        if vp is not None:
-            if vp > vhi >= top and vhi > 0.0:
-                cruise = (dist - (vhi * vhi - y0 * y0) / (2 * al)
-                          - (vhi * vhi - yf * yf) / (2 * be)) / vhi
-                rise = (vhi - y0) / al
-                best = Profile(rise + (vhi - yf) / be + cruise, True, rise)
-            else:
-                best = Profile((vp - y0) / al + (vp - yf) / be, True, (vp - y0) / al)
-    s2 = (al * y0 * y0 + be * yf * yf - 2.0 * al * be * dist) / (al + be)
-    low = min(y0, yf)
-    if s2 >= 0.0:
-        s = math.sqrt(s2)
-        vm = s if s <= low + 1e-12 else -s if -s <= low + 1e-12 else None
-        if vm is not None:
-            if vm < vlo <= low and vlo < 0.0:
-                cruise = (dist - (y0 * y0 - vlo * vlo) / (2 * be)
-                          - (yf * yf - vlo * vlo) / (2 * al)) / vlo
-                fall = (y0 - vlo) / be
-                down = Profile(fall + (yf - vlo) / al + cruise, False, fall)
-            else:
-                down = Profile((y0 - vm) / be + (yf - vm) / al, False, (y0 - vm) / be)
-            if down.time < best.time:
-                best = down
-    return best
+    if s2 < 0.0:
+        return NONE
+    s = math.sqrt(s2)
+    vp = -s if -s >= top - 1e-12 else s if s >= top - 1e-12 else None
+    if vp is None:
+        return NONE
+    if vp > vhi >= top and vhi > 0.0:
+        cruise = (dist - (vhi * vhi - y0 * y0) / (2 * al)
+                  - (vhi * vhi - yf * yf) / (2 * be)) / vhi
+        rise = (vhi - y0) / al
+        return Profile(rise + (vhi - yf) / be + cruise, up, rise)
+    return Profile((vp - y0) / al + (vp - yf) / be, up, (vp - y0) / al)
 
 
 class Rate:
