@@ -55,7 +55,8 @@ class PlannerConfig:
         goal_margin: Time [s] a goal wait runs on past the goal boundary while the goal keeps
             holding (the plan's end sees the goal with a margin).
         margin_per_event: The goal margin grows by this [s] per event before the goal wait
-            (at most to 0.1 s): VAL's event timing errors add up over long cascades.
+            (up to ``SearchConfig.max_goal_margin``): VAL's event timing errors add up over
+            long cascades.
         event_gap: No action closer than this [s] to an event (1.5 x VAL's event window).
         value_precision: Decimals of values in duplicate detection.
         validate: Check every plan with the validator before returning it.
@@ -171,10 +172,12 @@ def plan(
 
     t0 = time.perf_counter()
     # Grounding a long chain takes seconds: it obeys the limit and shows progress too.
-    loading = Limits(time_limit, on_progress=None if on_progress is None else
-                     lambda elapsed: on_progress(elapsed, PlanStats()))
+    check = None
+    if time_limit is not None or on_progress is not None:
+        check = Limits(time_limit, on_progress=None if on_progress is None else
+                       lambda elapsed: on_progress(elapsed, PlanStats())).check
     try:
-        task = load_task(domain, problem, loading.check if time_limit or on_progress else None)
+        task = load_task(domain, problem, check)
     except LimitReached as exc:
         result = PlanResult(PlanStatus.TIMEOUT, message=f"{exc} (while grounding)")
         result.stats.total_s = time.perf_counter() - t0
