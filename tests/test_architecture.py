@@ -29,7 +29,7 @@ LAYERS = [
     "commands",
 ]
 #: Importable from anywhere.
-SHARED = {"errors", "tolerances", "records"}
+SHARED = {"errors", "tolerances", "records", "typenames"}
 
 
 def _layer(module: str) -> str | None:

@@ -11,6 +11,7 @@ parameter over every object of its type) that did not make it into the task.
 from __future__ import annotations
 
 import time
+from collections.abc import Callable
 
 from artiplan.errors import InputError
 from artiplan.pddl import syntax as s
@@ -31,10 +32,6 @@ from artiplan.pddl.renumber import (
 from artiplan.pddl.simplify import make_and
 from artiplan.pddl.types import TypeHierarchy, objects_by_type
 from artiplan.records import replace
-
-TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
-if TYPE_CHECKING:
-    from collections.abc import Callable
 
 
 def changed_symbols(domain: s.Domain) -> tuple[set[str], set[str]]:

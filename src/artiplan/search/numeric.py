@@ -56,10 +56,7 @@ from artiplan.semantics.walks import (
     linear,
     source_function,
 )
-
-TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
-if TYPE_CHECKING:
-    from typing import Literal
+from artiplan.typenames import Literal
 
 Values = tuple[float, ...]
 PFn = Callable[[Values], float]

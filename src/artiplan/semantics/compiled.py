@@ -43,10 +43,7 @@ from artiplan.semantics.walks import (
     source_function,
 )
 from artiplan.tolerances import VAL, Tolerances
-
-TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
-if TYPE_CHECKING:
-    from typing import Any
+from artiplan.typenames import Any
 
 CondFn = Callable[[int, tuple[float, ...]], bool]
 EffectFn = Callable[[int, tuple[float, ...]], tuple[int, tuple[float, ...]]]

@@ -32,10 +32,7 @@ from artiplan.pddl.task import (
 )
 from artiplan.semantics import polynomial as P
 from artiplan.tolerances import VAL, Tolerances
-
-TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
-if TYPE_CHECKING:
-    from typing import Any
+from artiplan.typenames import Any
 
 #: A linear form ``({fluent: coefficient}, constant)``.
 Linear = tuple[dict[int, float], float]
