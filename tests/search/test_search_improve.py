@@ -71,3 +71,56 @@ def test_the_improvement_budget_follows_the_search_that_found_the_plan() -> None
                 expanded=expanded)
         budgets.append(stats.improve_budget)
     assert budgets == [2000, 36, 1200]  # 3 x 1000 capped; 3 x 12; 3 x 400
+
+
+def _expand(task, weight: float, memo):  # type: ignore[no-untyped-def]
+    """A bounded search of ``task`` with time weight ``weight``: its nodes and statistics."""
+    from artiplan.search.engine import Search, SearchConfig, initial_node
+    from artiplan.search.heuristic import HeuristicConfig, RateHeuristic
+    from artiplan.semantics import Kernel, compile_task
+
+    ct = compile_task(task, strict=True)
+    kernel = Kernel(ct)
+    search = Search(ct, kernel, RateHeuristic(ct, HeuristicConfig(time_weight=weight),
+                                              kernel.active),
+                    SearchConfig(), lambda: None, accept=lambda outcome: False,
+                    successors=memo)
+    search.run(initial_node(ct, kernel), 40)
+    return [(n.time, n.facts, n.values, n.parent, n.op, n.n_actions, n.last_event)
+            for n in search.nodes], search.stats
+
+
+def test_searches_sharing_successors_expand_the_same_nodes_as_searches_alone() -> None:
+    # the improvement's searches share a memo of successors: it must change nothing but time
+    task = _task(4, EncodingOptions("ucm", speed_g=1.0), 5)
+    memo: dict = {}  # type: ignore[type-arg]
+    sizes = []
+    for weight in (1.0, 3.0, 1.0):
+        shared, stats = _expand(task, weight, memo)
+        alone, _ = _expand(task, weight, None)
+        assert shared == alone
+        sizes.append(len(memo))
+    assert sizes[0] > 10
+    # the last search repeats the first: every successor from the memo, none computed
+    assert sizes[2] == sizes[1] and stats["reused"] >= sizes[0] / 2
+
+
+def test_a_reweighted_rate_heuristic_evaluates_as_one_built_with_those_weights() -> None:
+    from artiplan.search.engine import Search, SearchConfig, initial_node
+    from artiplan.search.heuristic import HeuristicConfig, RateHeuristic
+    from artiplan.semantics import Kernel, compile_task
+
+    task = _task(4, EncodingOptions("uacm", speed_g=0.5), 6)
+    ct = compile_task(task, strict=True)
+    kernel = Kernel(ct)
+    base = RateHeuristic(ct, HeuristicConfig(), kernel.active)
+    search = Search(ct, kernel, base, SearchConfig(), lambda: None, accept=lambda o: False)
+    search.run(initial_node(ct, kernel), 30)
+    assert len(search.nodes) > 10
+    for config in (HeuristicConfig(time_weight=3.0, damage_cost=0.5),
+                   HeuristicConfig(time_weight=0.01, damage_cost=5.0)):
+        copy, fresh = base.reweighted(config), RateHeuristic(ct, config, kernel.active)
+        for node in search.nodes:
+            assert copy.evaluate(node.facts, node.values, node.active) == \
+                fresh.evaluate(node.facts, node.values, node.active)
+        assert copy.config == config and base.config == HeuristicConfig()

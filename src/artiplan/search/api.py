@@ -233,6 +233,7 @@ class _Planning:
         self.best: tuple[Plan, ValidationReport | None] | None = None
         self.winner = FIRST[0]  # the attempt that found the first plan
         self.winner_expanded = 0  # and its expansions (they set the improvement budget)
+        self.rate: RateHeuristic | None = None  # the rate heuristic, once built
 
     def _report(self, elapsed: float) -> None:
         assert self.on_progress is not None
@@ -324,12 +325,29 @@ class _Planning:
         weight = time_weight or attempt.time_weight or config.time_weight
         hc = HeuristicConfig(time_weight=weight, damage_cost=attempt.damage)
         if not attempt.numeric:
-            return config.heuristic(self.ct, hc, self.kernel.active), config.search()
+            return self._heuristic(hc), self._search_config(attempt)
         from artiplan.search.numeric import NumericHeuristic  # here: general domains only
 
-        heur = NumericHeuristic(self.ct, hc, self.kernel.active)
-        return heur, replace(config.search(), delta=attempt.delta,
-                                         before_events=True, g_weight=1.0)
+        return NumericHeuristic(self.ct, hc, self.kernel.active), self._search_config(attempt)
+
+    def _search_config(self, attempt: Attempt) -> SearchConfig:
+        """The search settings of one attempt (numeric ones: free waits, actions counted)."""
+        if not attempt.numeric:
+            return self.config.search()
+        return replace(self.config.search(), delta=attempt.delta, before_events=True,
+                       g_weight=1.0)
+
+    def _heuristic(self, hc: HeuristicConfig) -> Heuristic:
+        """The configured heuristic with weights ``hc``; the rate heuristic is built once and
+        then reweighted (its setup reads the task only: restarts and the improvement's
+        searches would build the same again)."""
+        factory = self.config.heuristic
+        if factory is not RateHeuristic:
+            return factory(self.ct, hc, self.kernel.active)
+        if self.rate is None:
+            self.rate = RateHeuristic(self.ct, hc, self.kernel.active)
+            return self.rate
+        return self.rate.reweighted(hc)
 
     def _repair(self, actions: list[int], times: list[float]) -> bool:
         """A timing repair of a skeleton (:mod:`artiplan.search.timing`); True when the
@@ -426,7 +444,7 @@ class _Planning:
             return self._attempt(replace(winner, damage=hc.damage_cost),
                                  hc.time_weight)[0]
 
-        best, report = improve(self.ct, self.kernel, self._attempt(winner)[1], self.limits,
+        best, report = improve(self.ct, self.kernel, self._search_config(winner), self.limits,
                                first, self.stats, lambda outcome: extract_plan(self.ct, outcome),
                                check, heuristic=heuristic, expanded=self.winner_expanded)
         self.stats.add(self.kernel.counters)

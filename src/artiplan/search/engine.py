@@ -28,7 +28,7 @@ from collections.abc import Callable
 
 from artiplan.errors import InvalidPlanError
 from artiplan.pddl.task import Atom
-from artiplan.records import dataclass, field
+from artiplan.records import dataclass, field, replace
 from artiplan.search.heuristic import Evaluation, Heuristic
 from artiplan.search.invariants import Threats
 from artiplan.search.ops import (
@@ -115,6 +115,7 @@ class Node:
     forced: int = 0  # rescues among the actions on the path (not counted in g)
     n_events: int = 0  # events on the path from the initial node
     at_threat: bool = False  # an invariant fails within 2 leads (set when expanded)
+    path: int = -1  # the path from the initial node (0) to here, as a Successors key; -1: none
 
 
 @dataclass
@@ -129,6 +130,14 @@ class SearchOutcome:
     repaired: bool = False  # a timing repair of a path gave the plan (the accept callback has it)
 
 
+#: Successors already computed, shared by searches over one task and one configuration: (the
+#: parent's ``Node.path``, the operator's class, the operator) -> the child (None: inapplicable).
+#: A successor depends only on the path that leads to its parent (the parent's state, and for an
+#: action the state before the parent's action), so searches from the same initial node that
+#: meet the same path compute it once.
+Successors = dict[tuple[int, type, Op], "Node | None"]
+
+
 class Search:
     """One search over a compiled task."""
 
@@ -138,8 +147,14 @@ class Search:
         accept: Callable[[SearchOutcome], bool] = lambda outcome: True,
         prune: Callable[[Node], bool] | None = None,
         repair: Callable[[list[int], list[float]], bool] | None = None,
+        successors: Successors | None = None,
     ) -> None:
+        """``successors``: a memo of successors shared with other searches of the same task,
+        kernel and ``config`` from the same initial node (and heuristics with the same goal
+        groups); not with ``repair``, whose side effects a memo would skip."""
+        assert successors is None or repair is None, "a memo would skip the repairs"
         self.ct, self.kernel, self.h, self.config = ct, kernel, heuristic, config
+        self.memo = successors
         # invariants the running processes threaten: wait to just before, then the rescues
         lead = 2.0 * config.event_gap + 2.0 * config.epsilon
         self.threats = Threats(ct, kernel, lead) if ct.invariants else None
@@ -170,7 +185,7 @@ class Search:
         self.counter = itertools.count()
         self.stats: dict[str, float] = dict.fromkeys(
             ("expanded", "generated", "evaluated", "duplicates", "undo_pruned", "invalid",
-             "rejected", "pruned", "gap_pruned", "repairs", "repaired"), 0)
+             "rejected", "pruned", "gap_pruned", "repairs", "repaired", "reused"), 0)
 
     # ------------------------------------------------------------------ successors
     def _key(self, node: Node) -> tuple[int, tuple[int, ...], tuple[float | None, ...]]:
@@ -180,11 +195,23 @@ class Search:
 
     def successor(self, parent: Node, pi: int, op: Op) -> Node | None:
         """The node ``op`` leads to from ``parent`` (index ``pi``), or None if inapplicable."""
+        memo = self.memo if parent.path >= 0 else None
+        if memo is not None:
+            key = (parent.path, type(op), op)
+            if key in memo:
+                self.stats["reused"] += 1
+                known = memo[key]
+                return None if known is None else replace(known, parent=pi, at_threat=False)
         try:
-            return self._successor(parent, pi, op)
+            child = self._successor(parent, pi, op)
         except InvalidPlanError:  # an event loop or an event triggered twice: no happening
             self.stats["invalid"] += 1
-            return None
+            child = None
+        if memo is not None:
+            if child is not None:
+                child.path = len(memo) + 1
+            memo[key] = child
+        return child
 
     def _successor(self, parent: Node, pi: int, op: Op) -> Node | None:
         log: EventLog = []
@@ -476,7 +503,7 @@ def initial_node(ct: CompiledTask, kernel: Kernel) -> Node:
     log: EventLog = []
     facts, values, active = kernel.settle(0.0, ct.init_facts, ct.init_values, log)
     return Node(0.0, facts, values, 0.0, -1, START, log, False, active,
-                last_event=latest_event(log, ct.rearms), n_events=len(log))
+                last_event=latest_event(log, ct.rearms), n_events=len(log), path=0)
 
 
 def last_event_after(parent: Node, log: EventLog, quiet: frozenset[int] = frozenset()) -> float:

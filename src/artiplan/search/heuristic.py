@@ -166,6 +166,18 @@ class RateHeuristic(SideEffects):
         self._active_set: set[int] = set()
         self._active_moves: tuple[tuple[int, tuple[Linear, ...]], ...] = ()
 
+    def reweighted(self, config: HeuristicConfig) -> RateHeuristic:
+        """This heuristic with other weights, without building it again: the setup (goal
+        groups, relaxed actions, side effects, jumps) reads the task only and is shared, and
+        so is the cache of process motions (by the running processes alone); the state last
+        evaluated starts empty."""
+        other = object.__new__(type(self))
+        other.__dict__.update(self.__dict__)
+        other.config, other.damage_cost, other.seconds = config, config.damage_cost, 0.0
+        other._after, other._state = {}, (0, (), None)
+        other._active_set, other._active_moves = set(), ()
+        return other
+
     # --------------------------------------------------------------------------- setup
     def _lits(self, req: int, forb: int) -> tuple[int, ...]:
         pos = [i for i in range(self.n_facts) if req >> i & 1]

@@ -20,6 +20,7 @@ from artiplan.search.engine import (
     Search,
     SearchConfig,
     SearchOutcome,
+    Successors,
     initial_node,
     last_event_after,
 )
@@ -113,23 +114,32 @@ def improve(
                 limits.elapsed() > settings.time_share * limits.time_limit:
             raise LimitReached("time", "improvement stopped by the time limit")
 
+    # the searches below start from the same initial node with the same settings: a path one
+    # of them computed, the others take (pruning and heuristics only choose among them)
+    memo: Successors = {}
+    reused = 0
     try:
-        stats.improve_probes = _probe(
-            Search(ct, kernel, heuristic(ct, HeuristicConfig(), kernel.active), config, check,
-                   accept, prune), lambda: best.makespan)
+        probe = Search(ct, kernel, heuristic(ct, HeuristicConfig(), kernel.active), config,
+                       check, accept, prune, successors=memo)
+        try:
+            stats.improve_probes = _probe(probe, lambda: best.makespan)
+        finally:
+            reused += int(probe.stats["reused"])
         for weight, damage in settings.weights:
             left = budget - stats.improve_expanded
             if left <= 0:
                 break
             heur = heuristic(ct, HeuristicConfig(time_weight=weight, damage_cost=damage),
                              kernel.active)
-            search = Search(ct, kernel, heur, config, check, accept, prune)
+            search = Search(ct, kernel, heur, config, check, accept, prune, successors=memo)
             try:
                 search.run(initial_node(ct, kernel), left)
             finally:
                 stats.improve_expanded += int(search.stats["expanded"])
+                reused += int(search.stats["reused"])
     except (LimitReached, MemoryError, InvalidPlanError):
         stats.improve_cut = True
+    stats.reused += reused
     stats.improve_candidates = len(candidates)
     for found in reversed(candidates):  # best first: usually one validation
         report = validate(found)

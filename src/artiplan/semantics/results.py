@@ -142,9 +142,10 @@ class PlanStats(Mapping[str, "Any"]):
     validator refused), ``pruned`` (by the improvement's bound), ``gap_pruned`` (actions an
     event would follow too soon), ``events``, ``boundary_flows``, ``numeric_flows``,
     ``attempts`` (restarts), ``repairs`` / ``repaired`` (timing repairs tried / that gave the
-    plan), ``repair_evals`` (their trajectory simulations). Seconds: ``parse_s``, ``ground_s``,
-    ``compile_s``, ``search_s``,
-    ``heuristic_s``, ``validate_s``, ``improve_s``, ``separate_s``, ``total_s``. The plan:
+    plan), ``repair_evals`` (their trajectory simulations), ``reused`` (successors the
+    improvement's searches took from one another instead of computing them again). Seconds:
+    ``parse_s``, ``ground_s``, ``compile_s``, ``search_s``, ``heuristic_s``, ``validate_s``,
+    ``improve_s``, ``separate_s``, ``total_s``. The plan:
     ``plan_length``, ``makespan`` [s], ``validated``, ``margins``, ``separated`` (its tail
     shifted to pull coincident crossings apart, :mod:`artiplan.search.separate`). The
     improvement phase: ``improve_*``, ``first_makespan``, ``first_length``.
@@ -166,6 +167,7 @@ class PlanStats(Mapping[str, "Any"]):
     repairs: int = 0
     repaired: int = 0
     repair_evals: int = 0
+    reused: int = 0
     parse_s: float = 0.0
     ground_s: float = 0.0
     compile_s: float = 0.0
