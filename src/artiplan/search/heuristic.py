@@ -169,13 +169,11 @@ class RateHeuristic(SideEffects):
     def reweighted(self, config: HeuristicConfig) -> RateHeuristic:
         """This heuristic with other weights, without building it again: the setup (goal
         groups, relaxed actions, side effects, jumps) reads the task only and is shared, and
-        so is the cache of process motions (by the running processes alone); the state last
-        evaluated starts empty."""
+        so is the cache of process motions (by the running processes alone); the state of the
+        last evaluation needs no copy (every ``evaluate`` binds it anew)."""
         other = object.__new__(type(self))
         other.__dict__.update(self.__dict__)
         other.config, other.damage_cost, other.seconds = config, config.damage_cost, 0.0
-        other._after, other._state = {}, (0, (), None)
-        other._active_set, other._active_moves = set(), ()
         return other
 
     # --------------------------------------------------------------------------- setup

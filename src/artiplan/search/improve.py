@@ -117,14 +117,13 @@ def improve(
     # the searches below start from the same initial node with the same settings: a path one
     # of them computed, the others take (pruning and heuristics only choose among them)
     memo: Successors = {}
-    reused = 0
     try:
         probe = Search(ct, kernel, heuristic(ct, HeuristicConfig(), kernel.active), config,
                        check, accept, prune, successors=memo)
         try:
             stats.improve_probes = _probe(probe, lambda: best.makespan)
         finally:
-            reused += int(probe.stats["reused"])
+            stats.reused += int(probe.stats["reused"])
         for weight, damage in settings.weights:
             left = budget - stats.improve_expanded
             if left <= 0:
@@ -136,10 +135,9 @@ def improve(
                 search.run(initial_node(ct, kernel), left)
             finally:
                 stats.improve_expanded += int(search.stats["expanded"])
-                reused += int(search.stats["reused"])
+                stats.reused += int(search.stats["reused"])
     except (LimitReached, MemoryError, InvalidPlanError):
         stats.improve_cut = True
-    stats.reused += reused
     stats.improve_candidates = len(candidates)
     for found in reversed(candidates):  # best first: usually one validation
         report = validate(found)
