@@ -8,15 +8,19 @@ Exit codes: :class:`artiplan.errors.ExitCode` (shared/docs/conventions.md).
 
 from __future__ import annotations
 
-import argparse
 import importlib
 import os
 import sys
 import time
-from collections.abc import Sequence
 
-from artiplan import __version__
+from artiplan import __version__, quickargs
 from artiplan.errors import ArtiplanError, ExitCode
+
+TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
+if TYPE_CHECKING:
+    import argparse
+    from collections.abc import Sequence
+    from typing import Any
 
 #: name -> (module under artiplan.commands, one-line help). Order = the pipeline.
 COMMANDS: dict[str, tuple[str, str]] = {
@@ -50,16 +54,6 @@ def process_start() -> float:
         return time.time()
 
 
-class HelpFormatter(argparse.HelpFormatter):
-    """argparse's formatter, as wide as argparse makes it, without importing ``shutil`` (and
-    its compression modules: a noticeable share of a short command's start) to find out."""
-
-    def __init__(self, prog: str, indent_increment: int = 2, max_help_position: int = 24,
-                 width: int | None = None) -> None:
-        super().__init__(prog, indent_increment, max_help_position,
-                         terminal_columns() - 2 if width is None else width)
-
-
 def terminal_columns() -> int:
     """``shutil.get_terminal_size().columns``: COLUMNS, else stdout's terminal, else 80."""
     try:
@@ -74,6 +68,33 @@ def terminal_columns() -> int:
         return 80
 
 
+def _help_formatter() -> type[argparse.HelpFormatter]:
+    """argparse's formatter, as wide as argparse makes it, without importing ``shutil`` (and
+    its compression modules: a noticeable share of a short command's start) to find out. Made
+    on first use: argparse itself is imported only when a command line needs it."""
+    made: type[argparse.HelpFormatter] | None = globals().get("HelpFormatter")
+    if made is not None:
+        return made
+    import argparse
+
+    class HelpFormatter(argparse.HelpFormatter):
+        """argparse's formatter, as wide as the terminal, without ``shutil``."""
+
+        def __init__(self, prog: str, indent_increment: int = 2, max_help_position: int = 24,
+                     width: int | None = None) -> None:
+            super().__init__(prog, indent_increment, max_help_position,
+                             terminal_columns() - 2 if width is None else width)
+
+    globals()["HelpFormatter"] = HelpFormatter
+    return HelpFormatter
+
+
+def __getattr__(name: str) -> Any:
+    if name == "HelpFormatter":  # cli.HelpFormatter, made on first use
+        return _help_formatter()
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
 REPORT_URL = "the project's issue tracker (include the command line and the traceback above)"
 
 
@@ -83,10 +104,13 @@ def build_parser(
     """The parser and the sub-commands' parsers (empty: ``add_arguments`` fills them); with
     ``only``, that sub-command's alone (a parser a command costs a noticeable share of a short
     command's start)."""
+    import argparse
+
+    formatter = _help_formatter()
     parser = argparse.ArgumentParser(
         prog="artiplan",
         description="Plan and execute the reshaping of articulated objects with PDDL+ and gravity.",
-        formatter_class=HelpFormatter,
+        formatter_class=formatter,
     )
     parser.add_argument("--version", action="version", version=f"artiplan {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND")
@@ -94,7 +118,7 @@ def build_parser(
     for name, (_module, help_text) in COMMANDS.items():
         if only is None or name == only:
             subparsers[name] = sub.add_parser(name, help=help_text, description=help_text,
-                                              formatter_class=HelpFormatter)
+                                              formatter_class=formatter)
     return parser, subparsers
 
 
@@ -120,19 +144,25 @@ def main(argv: Sequence[str] | None = None) -> int:
     # unknown command), which list every command.
     name = next((a for a in argv if not a.startswith("-")), None)
     alone = name in COMMANDS and argv.index(name) == 0
-    parser, subparsers = build_parser(name if alone else None)
+    module = None
     if name in COMMANDS:
         module = _load(name)
         if module is None:
             print(f"artiplan: command {name!r} is not available in this version", file=sys.stderr)
             return int(ExitCode.USAGE)
-        module.add_arguments(subparsers[name])  # type: ignore[attr-defined]
-    try:
-        args = parser.parse_args(argv)
-    except SystemExit as exc:  # argparse: --help gives 0, bad options 2
-        return int(exc.code or 0)
+    args: Any = None
+    if alone:  # a plain command line is read without argparse (artiplan.quickargs)
+        args = quickargs.parse(name, module.add_arguments, argv[1:])  # type: ignore[attr-defined,arg-type]
+    if args is None:
+        parser, subparsers = build_parser(name if alone else None)
+        if module is not None:
+            module.add_arguments(subparsers[name])  # type: ignore[attr-defined,index]
+        try:
+            args = parser.parse_args(argv)
+        except SystemExit as exc:  # argparse: --help gives 0, bad options 2
+            return int(exc.code or 0)
     if args.command is None:
-        parser.print_help()
+        parser.print_help()  # only argparse reads a line without a command
         return int(ExitCode.USAGE)
     # When the command started [s since the epoch]: the process's start when it is the entry
     # point (a time limit then covers Python's start-up too), else now.

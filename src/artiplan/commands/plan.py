@@ -11,15 +11,15 @@ marked by a first comment line, and the exit code is 4 with the reason on stderr
 
 from __future__ import annotations
 
-import argparse
 import sys
-from collections.abc import Mapping
 
 from artiplan.commands import FilePath
 from artiplan.errors import ExitCode, UsageError
 
 TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
 if TYPE_CHECKING:
+    import argparse
+    from collections.abc import Mapping
     from typing import Any
 
 PLANNERS = ("artiplan", "enhsp", "kairos")
