@@ -8,13 +8,8 @@ with a warning.
 
 from __future__ import annotations
 
-import re
-
 from artiplan.errors import InputError, SourceLocation
 from artiplan.records import dataclass
-
-_TOKEN = re.compile(r"\s+|;[^\n]*|\(|\)|[^\s();]+")
-_NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?$")
 
 
 @dataclass(frozen=True)
@@ -31,7 +26,7 @@ class Token:
 
     def is_number(self) -> bool:
         """True if the token reads as a number."""
-        return _NUMBER.match(self.text) is not None
+        return is_number(self.text)
 
 
 @dataclass(frozen=True)
@@ -63,69 +58,88 @@ def describe(expr: SExpr | None) -> str:
 
 
 def is_number(text: str) -> bool:
-    """True if ``text`` reads as a PDDL number (``.5``, ``-3``, ``1e-3``)."""
-    return _NUMBER.match(text) is not None
+    """True if ``text`` reads as a PDDL number (``.5``, ``-3``, ``1e-3``): an optional sign,
+    digits with at most one ``.`` (at least one digit), an optional exponent ``e``/``E``, sign,
+    digits. (String methods, not ``re``: importing it is a share of a short command's start.)"""
+    body = text[1:] if text[:1] in ("+", "-") else text
+    cut = min((i for i in (body.find("e"), body.find("E")) if i >= 0), default=len(body))
+    mantissa, exponent = body[:cut], body[cut + 1:]
+    if cut < len(body):
+        exponent = exponent[1:] if exponent[:1] in ("+", "-") else exponent
+        if not exponent.isdecimal():
+            return False
+    whole, dot, fraction = mantissa.partition(".")
+    if not dot:
+        return whole.isdecimal()
+    return bool(whole or fraction) and all(p == "" or p.isdecimal() for p in (whole, fraction))
 
 
 def tokenize(text: str, filename: str, warnings: list[str] | None = None) -> list[Token]:
     """All tokens of ``text``, comments dropped, ``(`` and ``)`` as tokens of their own
     (harmless quirks read as meant, each noted in ``warnings``)."""
-    tokens: list[Token] = []
-    line, line_start = 1, 0
-    for m in _TOKEN.finditer(text):
-        s = m.group()
-        start = m.start()
-        if s[0].isspace() or s[0] == ";":
-            newlines = s.count("\n")
-            if newlines:
-                line += newlines
-                line_start = start + s.rfind("\n") + 1
-            continue
-        col = start - line_start + 1
-        if tokens and tokens[-1].text == "?" and s not in ("(", ")"):
-            lone = tokens.pop()
-            if warnings is not None:
-                warnings.append(f"{lone.loc}: '? {s}' read as '?{s}' (a space after '?')")
-            tokens.append(Token("?" + s, lone.loc))
-        elif len(s) > 1 and s[0] == "-" and not is_number(s):
-            tokens.append(Token("-", SourceLocation(filename, line, col)))
-            tokens.append(Token(s[1:], SourceLocation(filename, line, col + 1)))
-        else:
-            tokens.append(Token(s, SourceLocation(filename, line, col)))
-    return tokens
+    return [Token(s, SourceLocation(filename, line, col))
+            for s, line, col in _scan(text, filename, warnings)]
+
+
+def _scan(text: str, filename: str, warnings: list[str] | None) -> list[tuple[str, int, int]]:
+    """The tokens of ``text`` as (text, line, column): what :func:`tokenize` makes tokens of
+    (:func:`read_sexpr` makes only the tokens and locations its lists keep)."""
+    out: list[tuple[str, int, int]] = []
+    for line, row in enumerate(text.split("\n"), 1):
+        comment = row.find(";")
+        if comment >= 0:
+            row = row[:comment]
+        end = 0
+        # between two tokens there is only white space, so each is found from the last's end
+        for s in row.replace("(", " ( ").replace(")", " ) ").split():
+            start = row.find(s, end)
+            end = start + len(s)
+            col = start + 1
+            if out and out[-1][0] == "?" and s not in ("(", ")"):
+                _, lone_line, lone_col = out.pop()
+                if warnings is not None:
+                    warnings.append(f"{SourceLocation(filename, lone_line, lone_col)}: "
+                                    f"'? {s}' read as '?{s}' (a space after '?')")
+                out.append(("?" + s, lone_line, lone_col))
+            elif len(s) > 1 and s[0] == "-" and not is_number(s):
+                out.append(("-", line, col))
+                out.append((s[1:], line, col + 1))
+            else:
+                out.append((s, line, col))
+    return out
 
 
 def read_sexpr(text: str, filename: str, warnings: list[str] | None = None) -> SList:
     """The single top-level list of ``text`` (a domain or problem file); quirks noted in
     ``warnings``."""
-    tokens = tokenize(text.removeprefix("\ufeff"), filename, warnings)  # no byte-order mark
-    if not tokens:
+    scanned = _scan(text.removeprefix("\ufeff"), filename, warnings)  # no byte-order mark
+    if not scanned:
         raise InputError(
             "empty file", SourceLocation(filename, 1, 1), expected="'(define'", found="nothing"
         )
     stack: list[tuple[list[SExpr], SourceLocation]] = []
     top: SList | None = None
-    for tok in tokens:
+    for s, line, col in scanned:
+        loc = SourceLocation(filename, line, col)
         if top is not None:
             raise InputError(
-                "text after the end of the definition", tok.loc, expected="end of file",
-                found=tok.text,
+                "text after the end of the definition", loc, expected="end of file", found=s,
             )
-        if tok.text == "(":
-            stack.append(([], tok.loc))
-        elif tok.text == ")":
+        if s == "(":
+            stack.append(([], loc))
+        elif s == ")":
             if not stack:
-                raise InputError("unbalanced ')'", tok.loc, expected="'('", found=")")
-            items, loc = stack.pop()
-            node = SList(tuple(items), loc, tok.loc)
+                raise InputError("unbalanced ')'", loc, expected="'('", found=")")
+            items, start = stack.pop()
+            node = SList(tuple(items), start, loc)
             if stack:
                 stack[-1][0].append(node)
             else:
                 top = node
         elif not stack:
-            raise InputError("expected '(' at the start", tok.loc, expected="'('", found=tok.text)
+            raise InputError("expected '(' at the start", loc, expected="'('", found=s)
         else:
-            stack[-1][0].append(tok)
+            stack[-1][0].append(Token(s, loc))
     if stack:
         raise InputError(
             "unbalanced '(': the file ends before it is closed", stack[-1][1],

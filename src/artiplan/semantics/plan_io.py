@@ -19,7 +19,6 @@ from __future__ import annotations
 
 import functools
 import os
-import re
 from collections.abc import Collection, Iterable
 
 from artiplan.errors import InputError, SourceLocation
@@ -33,6 +32,8 @@ class _Patterns:
     ``artiplan plan`` only writes plans)."""
 
     def __init__(self) -> None:
+        import re  # here: importing it is a share of a short command's start
+
         self.time = re.compile(rf"\s*({_NUM})\s*:\s*")
         self.number = re.compile(rf"\s*{_NUM}\s*")
         self.action = re.compile(r"\(\s*([^()\s;]+)((?:\s+[^()\s;]+)*)\s*\)\s*")
