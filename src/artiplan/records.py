@@ -145,16 +145,20 @@ def _collect(cls: type) -> tuple[Field, ...]:
     fields = []
     for name, tp in annotations.items():
         text = tp if isinstance(tp, str) else repr(tp)
-        if (text.lstrip().split("[", 1)[0].rsplit(".", 1)[-1].strip()
+        if ("Var" in text or "KW_ONLY" in text) and (
+                text.lstrip().split("[", 1)[0].rsplit(".", 1)[-1].strip()
                 in ("ClassVar", "InitVar", "KW_ONLY") or "dataclasses.KW_ONLY" in text):
             raise TypeError(f"{cls.__name__}.{name}: ClassVar/InitVar/KW_ONLY are not "
                             "supported here: use dataclasses.dataclass")
         default = getattr(cls, name, MISSING)
         spec = _as_field(default, std)
-        f = Field(default=default) if spec is None else spec
-        if f.kw_only is True or not f.init:
-            raise TypeError(f"{cls.__name__}.{name}: kw_only and init=False fields are not "
-                            "supported here: use dataclasses.dataclass")
+        if spec is None:
+            f = _plain_field(default)
+        else:
+            f = spec
+            if f.kw_only is True or not f.init:
+                raise TypeError(f"{cls.__name__}.{name}: kw_only and init=False fields are "
+                                "not supported here: use dataclasses.dataclass")
         if f.default is not MISSING and f.default.__class__.__hash__ is None:
             raise ValueError(f"mutable default {type(f.default)} for field {name} is not "
                              "allowed: use default_factory")
@@ -171,10 +175,18 @@ def _collect(cls: type) -> tuple[Field, ...]:
     return tuple(fields)
 
 
+def _plain_field(default: Any) -> Field:
+    """``Field(default=default)``, made without its keyword checks (most fields are these)."""
+    f = Field.__new__(Field)
+    f.default, f.default_factory, f.init, f.repr, f.hash, f.compare, f.metadata, f.kw_only = (
+        default, MISSING, True, True, None, True, None, MISSING)
+    return f
+
+
 def _as_field(value: Any, std: Any) -> Field | None:
     """``value`` as a field's description if it is one (``field()`` of this module or of
     ``dataclasses``, the module ``std`` when imported), else None."""
-    if isinstance(value, Field):
+    if value.__class__ is Field:
         return value
     if std is None or not isinstance(value, std.Field):
         return None
@@ -259,14 +271,18 @@ class _LazyInit:
 
     def __init__(self, cls: type, fields: tuple[Field, ...], frozen: bool) -> None:
         self.cls, self.fields, self.frozen, self.calls = cls, fields, frozen, 0
-        self.generic = _generic_init(cls, fields, frozen, self.compiled)
+        self.generic: Callable[..., None] | None = None  # made at the first instance
 
     def __get__(self, obj: Any, owner: type | None = None) -> Any:
         if obj is None or self.calls >= self.COMPILE_AFTER:
             fn = self.compiled()
             return fn if obj is None else fn.__get__(obj, owner)
         self.calls += 1
-        return self.generic.__get__(obj, owner)
+        generic = self.generic
+        if generic is None:
+            generic = self.generic = _generic_init(self.cls, self.fields, self.frozen,
+                                                   self.compiled)
+        return generic.__get__(obj, owner)
 
     def compiled(self) -> Callable[..., None]:
         """The compiled ``__init__``, now in the class."""
@@ -289,6 +305,9 @@ def _generic_init(cls: type, fields: tuple[Field, ...], frozen: bool,
     factory = tuple(f.default_factory is not MISSING for f in fields)
     put = object.__setattr__ if frozen else setattr
     post_init = hasattr(cls, "__post_init__")
+    # the fields land in the instance's __dict__ whichever way they are set: one update then
+    # does what a put per field does (the compiled __init__ keeps the standard library's text)
+    direct = _plain_fields(cls, names) and (frozen or cls.__setattr__ is object.__setattr__)
 
     def __init__(self: Any, /, *args: Any, **kwargs: Any) -> None:
         given = len(args)
@@ -305,6 +324,8 @@ def _generic_init(cls: type, fields: tuple[Field, ...], frozen: bool,
                 else:
                     value = defaults[i]() if factory[i] else defaults[i]
                 put(self, name, value)
+        elif direct and self.__class__ is cls:
+            self.__dict__.update(zip(names, args, strict=True))
         else:
             for name, value in zip(names, args, strict=True):
                 put(self, name, value)
@@ -312,6 +333,21 @@ def _generic_init(cls: type, fields: tuple[Field, ...], frozen: bool,
             self.__post_init__()
 
     return __init__
+
+
+def _plain_fields(cls: type, names: tuple[str, ...]) -> bool:
+    """True if instances of ``cls`` keep every field in their ``__dict__``: they have one, and
+    no class on the MRO makes a field name a data descriptor (a slot, a property)."""
+    if not cls.__dictoffset__:
+        return False
+    for name in names:
+        for klass in cls.__mro__:
+            if name in vars(klass):
+                kind = type(vars(klass)[name])
+                if hasattr(kind, "__set__") or hasattr(kind, "__delete__"):
+                    return False
+                break
+    return True
 
 
 def _init_fn(cls: type, fields: tuple[Field, ...], frozen: bool) -> Callable[..., None]:
