@@ -18,7 +18,7 @@ from collections.abc import Callable, Iterator
 from artiplan.errors import InvalidPlanError, UsageError
 from artiplan.pddl.task import Task
 from artiplan.records import dataclass, names, replace
-from artiplan.search.engine import Search, SearchConfig, SearchOutcome, initial_node
+from artiplan.search.engine import Search, SearchConfig, SearchOutcome, Successors, initial_node
 from artiplan.search.heuristic import Heuristic, HeuristicConfig, RateHeuristic
 from artiplan.search.improve import improve
 from artiplan.search.limits import LimitReached, Limits
@@ -234,6 +234,9 @@ class _Planning:
         self.winner = FIRST[0]  # the attempt that found the first plan
         self.winner_expanded = 0  # and its expansions (they set the improvement budget)
         self.rate: RateHeuristic | None = None  # the rate heuristic, once built
+        # successors of the rate-heuristic attempts (one search config, one set of goal
+        # groups): each later attempt and the improvement phase start from the same root
+        self.memo: Successors | None = {} if config.heuristic is RateHeuristic else None
 
     def _report(self, elapsed: float) -> None:
         assert self.on_progress is not None
@@ -290,7 +293,8 @@ class _Planning:
                 budget = float("inf") if attempt.per_goal is None else \
                     attempt.per_goal * max(5, len(heur.groups))
                 search = Search(self.ct, self.kernel, heur, search_config, self.limits.check,
-                                self._accept, repair=self._repair if attempt.numeric else None)
+                                self._accept, repair=self._repair if attempt.numeric else None,
+                                successors=None if attempt.numeric else self.memo)
                 stats.attempts = n
                 self.running = search
                 try:
@@ -446,7 +450,8 @@ class _Planning:
 
         best, report = improve(self.ct, self.kernel, self._search_config(winner), self.limits,
                                first, self.stats, lambda outcome: extract_plan(self.ct, outcome),
-                               check, heuristic=heuristic, expanded=self.winner_expanded)
+                               check, heuristic=heuristic, expanded=self.winner_expanded,
+                               successors=None if winner.numeric else self.memo)
         self.stats.add(self.kernel.counters)
         self.stats.improve_s = time.perf_counter() - t - (self.stats.validate_s - validate_before)
         self.stats.first_makespan, self.stats.first_length = first.makespan, len(first.actions)

@@ -136,6 +136,9 @@ class SearchOutcome:
 #: action the state before the parent's action), so searches from the same initial node that
 #: meet the same path compute it once.
 Successors = dict[tuple[int, type, Op], "Node | None"]
+#: A memo stops growing at this many successors (a long first search would otherwise keep an
+#: entry per node it generated); a child left out has no path id, so neither have its own.
+MEMO_LIMIT = 200_000
 
 
 class Search:
@@ -207,7 +210,7 @@ class Search:
         except InvalidPlanError:  # an event loop or an event triggered twice: no happening
             self.stats["invalid"] += 1
             child = None
-        if memo is not None:
+        if memo is not None and len(memo) < MEMO_LIMIT:
             if child is not None:
                 child.path = len(memo) + 1
             memo[key] = child

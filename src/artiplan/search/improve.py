@@ -77,6 +77,7 @@ def improve(
     stats: PlanStats, extract: Callable[[SearchOutcome], Plan],
     validate: Callable[[Plan], ValidationReport | None], settings: ImproveConfig = ImproveConfig(),
     heuristic: Callable[..., Heuristic] = RateHeuristic, expanded: int | None = None,
+    successors: Successors | None = None,
 ) -> tuple[Plan, ValidationReport | None]:
     """Search for a plan better than ``first``; returns it with its validator report (None
     when ``first`` is kept: the caller validated it already). The ``improve_*`` statistics
@@ -86,7 +87,8 @@ def improve(
     heuristic, a coarser grid) say nothing about how hard a better plan is to find.
 
     ``validate(plan)`` returns a report, or None when validation is off (candidates are then
-    trusted, as the first plan was).
+    trusted, as the first plan was). ``successors``: the memo of the searches that found
+    ``first``, if they ran with ``config`` and the same heuristic groups (else a new one).
     """
     done = stats.expanded if expanded is None else expanded
     budget = int(min(settings.maximum, max(settings.minimum, settings.factor * done)))
@@ -116,7 +118,7 @@ def improve(
 
     # the searches below start from the same initial node with the same settings: a path one
     # of them computed, the others take (pruning and heuristics only choose among them)
-    memo: Successors = {}
+    memo: Successors = {} if successors is None else successors
     try:
         probe = Search(ct, kernel, heuristic(ct, HeuristicConfig(), kernel.active), config,
                        check, accept, prune, successors=memo)
