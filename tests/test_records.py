@@ -93,7 +93,7 @@ def test_same_instances(opts: dict[str, Any], compile_after: int) -> None:
             continue
         if own not in seen:
             seen.add(own)
-            assert isinstance(vars(own)["__init__"], records._LazyInit)  # no compile yet
+            assert records.is_generic_init(vars(own)["__init__"])  # no compile yet
         s1, s2, o1, o2 = std(*args), std(*args), own(*args), own(*args)
         names = records.names(std)
         kw = dict(zip(names, args, strict=False))
@@ -144,10 +144,10 @@ def test_init_compiled_when_it_pays_off() -> None:
 
     limit = records._LazyInit.COMPILE_AFTER
     made = [Pair(k) for k in range(limit - 1)] + [Pair(a=1, b=[2])]
-    assert isinstance(vars(Pair)["__init__"], records._LazyInit)  # generic so far
+    assert records.is_generic_init(vars(Pair)["__init__"])  # generic so far
     assert made[3] == Pair(3) and made[-1].b == [2] and made[0].b is not made[1].b
     Pair(5)
-    assert not isinstance(vars(Pair)["__init__"], records._LazyInit)  # compiled now
+    assert not records.is_generic_init(vars(Pair)["__init__"])  # compiled now
     assert Pair(5) == made[5]
 
     @records.dataclass
@@ -156,7 +156,7 @@ def test_init_compiled_when_it_pays_off() -> None:
 
     with pytest.raises(TypeError, match="unexpected keyword argument 'c'"):
         Single(1, c=2)  # a call that does not bind: the compiled __init__'s own error
-    assert not isinstance(vars(Single)["__init__"], records._LazyInit)
+    assert not records.is_generic_init(vars(Single)["__init__"])
 
 
 @pytest.mark.parametrize("opts", OPTIONS, ids=lambda o: ",".join(o) or "default")
@@ -164,7 +164,7 @@ def test_same_classes(opts: dict[str, Any]) -> None:
     for std, own, _ in _both(opts):
         assert own.__doc__ == std.__doc__
         assert str(inspect.signature(own)) == str(inspect.signature(std))
-        assert not isinstance(vars(own).get("__init__"), records._LazyInit)  # read: compiled
+        assert not records.is_generic_init(vars(own).get("__init__"))  # read: compiled
         assert own.__init__.__qualname__.split(".")[-1] == std.__init__.__qualname__.split(".")[-1]
         assert own.__match_args__ == std.__match_args__  # type: ignore[attr-defined]
         assert getattr(own, "__slots__", None) == getattr(std, "__slots__", None)

@@ -7,7 +7,7 @@ path of ``artiplan plan`` that was more than half of its start-up. This module m
 classes without either:
 
 * ``__init__`` is a closure for a class's first instances and the standard library's text,
-  compiled, once that pays off (:class:`_LazyInit`); ``__repr__``, ``__eq__``, ``__hash__`` and
+  compiled once that pays off (:class:`_LazyInit`); ``__repr__``, ``__eq__``, ``__hash__`` and
   the frozen ``__setattr__``/``__delattr__`` are closures with the same results, hashes, reprs
   and errors; ``__match_args__``, ``__slots__``, ``__doc__`` and class attributes are the same;
 * ``__dataclass_fields__`` and ``__dataclass_params__`` appear when first read, made by
@@ -109,7 +109,7 @@ def _process(cls: type[T], params: dict[str, bool], slots: bool) -> type[T]:
     if params["init"]:
         _check_defaults(fields)
         if "__init__" not in own:
-            cls.__init__ = _LazyInit(cls, fields, params["frozen"])  # type: ignore[method-assign,assignment]
+            _LazyInit(cls, fields, params["frozen"])  # puts the class's __init__
     if params["repr"] and "__repr__" not in own:
         _attach(cls, _repr_fn(tuple(f.name for f in fields if f.repr)))
     if params["eq"] and "__eq__" not in own:
@@ -260,42 +260,65 @@ def _check_defaults(fields: tuple[Field, ...]) -> None:
 
 class _LazyInit:
     """A class's ``__init__`` until its compiled one pays off. The first ``COMPILE_AFTER``
-    instances are made by a generic ``__init__`` (a closure: no compile, ~0.4 us slower a
-    call); then, or at the first read of ``cls.__init__`` (``inspect.signature``), or at a
-    call that does not bind (for the exact error), the standard library's text is compiled
-    (~0.1 ms) and put in its place. Most classes of a short run never need it."""
+    instances are made by a generic ``__init__`` (a closure, made at the first instance: no
+    compile); then, or when ``inspect.signature`` reads it, or at a call that does not bind
+    (for the exact error), the standard library's text is compiled (~0.1 ms) and put in its
+    place. Most classes of a short run never need it. The generic one is a plain function in
+    the class (a descriptor would cost each instance a Python-level ``__get__``); its
+    ``__wrapped__`` is this object, whose ``__signature__`` is the compiled one's."""
 
-    __slots__ = ("cls", "fields", "frozen", "calls", "generic")
+    __slots__ = ("cls", "fields", "frozen", "calls")
 
     COMPILE_AFTER = 100
 
     def __init__(self, cls: type, fields: tuple[Field, ...], frozen: bool) -> None:
         self.cls, self.fields, self.frozen, self.calls = cls, fields, frozen, 0
-        self.generic: Callable[..., None] | None = None  # made at the first instance
+        lazy = self
 
-    def __get__(self, obj: Any, owner: type | None = None) -> Any:
-        if obj is None or self.calls >= self.COMPILE_AFTER:
-            fn = self.compiled()
-            return fn if obj is None else fn.__get__(obj, owner)
-        self.calls += 1
-        generic = self.generic
-        if generic is None:
-            generic = self.generic = _generic_init(self.cls, self.fields, self.frozen,
-                                                   self.compiled)
-        return generic.__get__(obj, owner)
+        def __init__(obj: Any, /, *args: Any, **kwargs: Any) -> None:
+            # the first instance: the generic __init__ takes this one's place
+            if _LazyInit.COMPILE_AFTER <= 0:
+                lazy.compiled()(obj, *args, **kwargs)
+                return
+            generic = _generic_init(lazy.cls, lazy.fields, lazy.frozen, lazy)
+            if lazy.cls.__dict__.get("__init__") is __init__:
+                lazy._put(generic)
+            generic(obj, *args, **kwargs)
+
+        self._put(__init__)
+
+    def _put(self, fn: Callable[..., None]) -> None:
+        fn.__wrapped__ = self  # type: ignore[attr-defined]
+        _attach(self.cls, fn)
 
     def compiled(self) -> Callable[..., None]:
         """The compiled ``__init__``, now in the class."""
         fn = self.cls.__dict__["__init__"]
-        if fn is self:
+        if getattr(fn, "__wrapped__", None) is self:
             fn = _init_fn(self.cls, self.fields, self.frozen)
             _attach(self.cls, fn)
         return fn
 
+    @property
+    def __signature__(self) -> Any:
+        import inspect  # only when something inspects the class
+
+        return inspect.signature(self.compiled())
+
+    def __call__(self, *args: Any, **kwargs: Any) -> None:
+        self.compiled()(*args, **kwargs)
+
+
+def is_generic_init(fn: Any) -> bool:
+    """True while ``fn`` (a class's ``__init__``) is not the compiled one yet."""
+    return isinstance(getattr(fn, "__wrapped__", None), _LazyInit)
+
 
 def _generic_init(cls: type, fields: tuple[Field, ...], frozen: bool,
-                  compiled: Callable[[], Callable[..., None]]) -> Callable[..., None]:
-    """An ``__init__`` for every call that binds (the others go to ``compiled()``)."""
+                  lazy: _LazyInit) -> Callable[..., None]:
+    """An ``__init__`` for every call that binds (the others go to ``lazy.compiled()``), up to
+    ``COMPILE_AFTER`` calls."""
+    compiled = lazy.compiled
     names = tuple(f.name for f in fields)
     index = {name: i for i, name in enumerate(names)}
     n, required = len(names), sum(f.default is MISSING and f.default_factory is MISSING
@@ -310,6 +333,10 @@ def _generic_init(cls: type, fields: tuple[Field, ...], frozen: bool,
     direct = _plain_fields(cls, names) and (frozen or cls.__setattr__ is object.__setattr__)
 
     def __init__(self: Any, /, *args: Any, **kwargs: Any) -> None:
+        lazy.calls += 1
+        if lazy.calls > _LazyInit.COMPILE_AFTER:
+            compiled()(self, *args, **kwargs)
+            return
         given = len(args)
         if kwargs or given != n:
             if given > n or any(index.get(k, -1) < given for k in kwargs) \
@@ -380,7 +407,7 @@ def _init_fn(cls: type, fields: tuple[Field, ...], frozen: bool) -> Callable[...
 def _signature_text(cls: type, fields: tuple[Field, ...], init: bool) -> str:
     """``str(inspect.signature(cls))`` without ``-> None``, as ``dataclasses`` puts in the
     ``__doc__`` of a class without one (written here when every annotation is a string)."""
-    if init and isinstance(cls.__dict__.get("__init__"), _LazyInit) \
+    if init and is_generic_init(cls.__dict__.get("__init__")) \
             and all(isinstance(f.type, str) for f in fields):
         parts = []
         for f in fields:
