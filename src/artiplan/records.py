@@ -381,7 +381,7 @@ def _init_fn(cls: type, fields: tuple[Field, ...], frozen: bool) -> Callable[...
     self_name = "__dataclass_self__" if any(f.name == "self" for f in fields) else "self"
     ns: dict[str, Any] = {"__name__": cls.__module__, "_FACTORY": _FACTORY,
                           "__dataclass_builtins_object__": object}
-    params, body = [self_name], []
+    params, body, direct = [self_name], [], []
     for f in fields:
         value = f.name
         if f.default_factory is not MISSING:
@@ -395,6 +395,14 @@ def _init_fn(cls: type, fields: tuple[Field, ...], frozen: bool) -> Callable[...
             params.append(f.name)
         body.append(f"__dataclass_builtins_object__.__setattr__({self_name},{f.name!r},{value})"
                     if frozen else f"{self_name}.{f.name}={value}")
+        direct.append(f"__dataclass_dict__[{f.name!r}]={value}")
+    if frozen and fields and _plain_fields(cls, tuple(f.name for f in fields)):
+        # the fields land in the instance's __dict__ (see _plain_fields): writing it is what
+        # object.__setattr__ does there, at about half the cost; a subclass gets the original
+        ns["__dataclass_cls__"] = cls
+        body = [f"if {self_name}.__class__ is __dataclass_cls__:",
+                f"  __dataclass_dict__ = {self_name}.__dict__",
+                *(f"  {line}" for line in direct), "else:", *(f"  {line}" for line in body)]
     if hasattr(cls, "__post_init__"):
         body.append(f"{self_name}.__post_init__()")
     lines = "\n".join(f"  {b}" for b in body or ["pass"])
