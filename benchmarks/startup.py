@@ -1,12 +1,15 @@
 """Start-up: wall time of the whole ``artiplan plan`` process on small problems, old against new.
 
-Each run is one fresh process, ``python -m artiplan plan DOMAIN PROBLEM -o OUT -q``, timed from
-spawn to exit [s wall]; one process at a time. Each source tree (``--src``, and ``--old-src``)
-gets its bytecode compiled first (``python -m compileall``: the sandbox sets
-PYTHONDONTWRITEBYTECODE, and a version without cached bytecode would pay for compiling). The
-sides alternate within every round (new, old, kairos; then old, kairos, new; ...), so a machine
-that gets busier or quieter favours none. Kairos (``kairos solve``, the command line of
-``artiplan.backends.kairos``) runs side by side when the backend finds its executable.
+Each run is one fresh process, ``artiplan plan DOMAIN PROBLEM -o OUT -q``, timed from spawn to
+exit [s wall]; one process at a time. ``--entry script`` (the default) runs the console script
+pip writes for ``artiplan = artiplan.cli:main`` (the process a user's ``artiplan plan`` is),
+with this interpreter and each side's tree on PYTHONPATH; ``--entry module`` runs
+``python -m artiplan`` instead (``runpy`` and its imports come on top, ~3-5 ms). Each source
+tree (``--src``, and ``--old-src``) gets its bytecode compiled first (``python -m compileall``:
+the sandbox sets PYTHONDONTWRITEBYTECODE, and a version without cached bytecode would pay for
+compiling). The sides alternate within every round (new, old, kairos; then old, kairos, new;
+...), so a machine that gets busier or quieter favours none. Kairos (``kairos solve``, the
+command line of ``artiplan.backends.kairos``) runs side by side when the backend finds it.
 
     python benchmarks/startup.py --suite SUITE --old-src /tmp/old/src -n 15 \\
         [--other main=/tmp/main/src] ng/p3-1 ucm-0.5/p3-1 uacm-0.5/p3-1
@@ -28,6 +31,14 @@ import tempfile
 import time
 from pathlib import Path
 from typing import Any
+
+#: The console script pip writes for ``[project.scripts] artiplan = "artiplan.cli:main"``.
+CONSOLE_SCRIPT = """import sys
+from artiplan.cli import main
+if __name__ == '__main__':
+    sys.argv[0] = sys.argv[0].removesuffix('.exe')
+    sys.exit(main())
+"""
 
 HERE = Path(__file__).resolve()
 SRC = HERE.parents[1] / "src"
@@ -82,6 +93,8 @@ def main() -> None:
                     help="another version's src/ as a column of its own (repeatable)")
     ap.add_argument("-n", "--runs", type=int, default=15, help="runs per problem and side")
     ap.add_argument("--no-kairos", action="store_true", help="leave Kairos out")
+    ap.add_argument("--entry", choices=("script", "module"), default="script",
+                    help="how artiplan is started: its console script (default) or python -m")
     ap.add_argument("-o", "--out", type=Path, help="write every run's numbers here (JSON)")
     args = ap.parse_args()
 
@@ -105,7 +118,12 @@ def main() -> None:
         "date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
         "sides": {k: str(v) for k, v in sides.items()}, "problems": {},
     }
+    report["entry"] = args.entry
     with tempfile.TemporaryDirectory() as tmp:
+        script = Path(tmp) / "artiplan"
+        script.write_text(CONSOLE_SCRIPT)
+        start = [sys.executable, str(script)] if args.entry == "script" else \
+            [sys.executable, "-m", "artiplan"]
         for pid in args.problems:
             family, name = pid.split("/")
             domain = args.suite / family / "domain.pddl"
@@ -113,8 +131,8 @@ def main() -> None:
             cmds: dict[str, tuple[list[str], dict[str, str]]] = {}
             for side, src in sides.items():
                 out = str(Path(tmp) / f"{side}.plan")
-                cmds[side] = ([sys.executable, "-m", "artiplan", "plan", str(domain), str(problem),
-                               "-o", out, "-q"], dict(os.environ, PYTHONPATH=str(src)))
+                cmds[side] = ([*start, "plan", str(domain), str(problem), "-o", out, "-q"],
+                              dict(os.environ, PYTHONPATH=str(src)))
             kairos = None if args.no_kairos else kairos_command(sides["new"], domain, problem)
             if kairos is not None:
                 cmds["kairos"] = (kairos, dict(os.environ))
@@ -137,7 +155,8 @@ def main() -> None:
             report["problems"][pid]["same_plan"] = len(set(plans.values())) == 1
     report["load"] = {"before": load_before, "after": load_average()}
     print(f"{report['date']}, {report['machine']} ({report['cpus']} cpus), Python "
-          f"{report['python']}, {args.runs} runs a side, load {load_before:.2f} -> "
+          f"{report['python']}, {args.runs} runs a side, entry {args.entry}, load "
+          f"{load_before:.2f} -> "
           f"{report['load']['after']:.2f}")
     print("wall [s] min / median / max")
     for pid, row in report["problems"].items():

@@ -163,6 +163,8 @@ class RateHeuristic(SideEffects):
         self._side_effects()
         self.seconds = 0.0  # time spent in evaluate() [s]
         self._moves_cache: dict[tuple[int, ...], tuple[tuple[int, tuple[Linear, ...]], ...]] = {}
+        # hadd costs by facts (they read neither values nor weights: shared when reweighted)
+        self._cost_cache: dict[int, tuple[list[float], list[int]]] = {}
         self._active_set: set[int] = set()
         self._active_moves: tuple[tuple[int, tuple[Linear, ...]], ...] = ()
 
@@ -263,8 +265,20 @@ class RateHeuristic(SideEffects):
         return {f: tuple(j) for f, j in out.items()}
 
     # --------------------------------------------------------------------------- hadd
+    #: Most fact states whose costs are kept (then the cache starts again).
+    COST_CACHE = 1024
+
     def fact_costs(self, facts: int) -> tuple[list[float], list[int]]:
-        """``hadd`` cost of every fact literal from ``facts``, and each one's best supporter."""
+        """``hadd`` cost of every fact literal from ``facts``, and each one's best supporter
+        (cached by ``facts``: waits and restarts meet the same facts again; read only)."""
+        found = self._cost_cache.get(facts)
+        if found is None:
+            if len(self._cost_cache) >= self.COST_CACHE:
+                self._cost_cache.clear()
+            found = self._cost_cache[facts] = self._fact_costs(facts)
+        return found
+
+    def _fact_costs(self, facts: int) -> tuple[list[float], list[int]]:
         n = self.n_facts
         cost = [math.inf] * (2 * n)
         supp = [-1] * (2 * n)

@@ -500,8 +500,13 @@ class _Rows:
             if cs is None:
                 continue
             p0, p1 = a * values[f] + b, a * cs[0]
-            p2 = a * cs[1] if len(cs) > 1 else 0.0
-            for r in _quadratic_roots(p0, p1, p2):
+            if len(cs) == 1:  # linear: _quadratic_roots's first case, without the call
+                if p1 != 0.0:
+                    r = -p0 / p1
+                    if DT_MIN < r < best:
+                        best = r
+                continue
+            for r in _quadratic_roots(p0, p1, a * cs[1]):
                 if DT_MIN < r < best:
                     best = r
         return best if best <= horizon and best != math.inf else None
