@@ -29,3 +29,9 @@ def per_task(task: Task, key: Any, build: Callable[[], T]) -> T:
     value = build()
     _MEMO[k] = (weakref.ref(task), value)
     return value
+
+
+def cached(task: Task, key: Any) -> Any | None:
+    """What :func:`per_task` holds for (task, key), or None; builds nothing."""
+    hit = _MEMO.get((id(task), key))
+    return hit[1] if hit is not None and hit[0]() is task else None

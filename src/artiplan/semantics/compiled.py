@@ -29,8 +29,8 @@ from artiplan.pddl.task import (
 )
 from artiplan.pddl.task import Atom as _Atom
 from artiplan.pddl.task import Comparison as _Comparison
-from artiplan.records import dataclass, field
-from artiplan.semantics.cache import per_task
+from artiplan.records import dataclass, field, replace
+from artiplan.semantics.cache import cached, per_task
 from artiplan.semantics.walks import (
     Linear,
     comparison_source,
@@ -348,7 +348,40 @@ def compile_task(task: Task, tol: Tolerances = VAL, strict: bool = False) -> Com
     plan never leans on the slack; events and the conditions of conditional effects are still
     read with ``tol``, as a validator reads them.
     """
-    return per_task(task, ("compiled", tol, strict), lambda: _compile(task, tol, strict))
+    def build() -> CompiledTask:
+        # the planner's and the validator's views of one task differ only in how the goal and
+        # the action preconditions read comparisons: the second view is the first one re-read
+        other = cached(task, ("compiled", tol, not strict))
+        return _compile(task, tol, strict) if other is None else _reread(other, strict)
+
+    return per_task(task, ("compiled", tol, strict), build)
+
+
+def _reread(other: CompiledTask, strict: bool) -> CompiledTask:
+    """``other`` (the same task and tolerances) with its goal and action preconditions read
+    ``strict`` or not. Everything else (comparison table, events, processes, invariants,
+    effects) is the same in both views and shared."""
+    comps, tol = other.comps, other.tol
+    actions = []
+    for op in other.actions:
+        pre, used = compile_condition(op.source.precondition, comps, tol, snap=strict)
+        copy = replace(op, pre=pre, pre_comps=used)
+        _follow(op, copy, "effect")
+        _follow(op, copy, "parts")
+        actions.append(copy)
+    goal, goal_comps = compile_condition(other.task.goal, comps, tol, snap=strict)
+    return replace(other, actions=actions, goal=goal, goal_comps=goal_comps, strict=strict)
+
+
+def _follow(src: Operator, dst: Operator, field_name: str) -> None:
+    """``dst.<field_name>`` calls ``src``'s (compiling it on the first call of either) and
+    then takes its place."""
+    def first(*args: Any) -> Any:
+        out = getattr(src, field_name)(*args)
+        object.__setattr__(dst, field_name, getattr(src, field_name))
+        return out
+
+    object.__setattr__(dst, field_name, first)
 
 
 def _compile(task: Task, tol: Tolerances, strict: bool) -> CompiledTask:
