@@ -106,3 +106,20 @@ def test_exit_codes_match_the_conventions() -> None:
         "EXTERNAL_TOOL": 9,
     }
     assert {c.name: int(c) for c in ExitCode} == expected
+
+
+def test_the_collector_threshold_is_the_process_entry_points_alone(capsys) -> None:  # type: ignore[no-untyped-def]
+    # main(argv) from a caller's code leaves the caller's process settings alone; the console
+    # script (argv None) raises the first generation's threshold for its own process
+    import gc
+
+    from artiplan.cli import GC_THRESHOLD
+
+    before = gc.get_threshold()
+    assert main(["--version"]) == 0
+    assert gc.get_threshold() == before
+    code = ("import gc, sys; sys.argv = ['artiplan', '--version']; from artiplan.cli import main; "
+            "main(); print(gc.get_threshold()[0])")
+    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True,
+                         check=True).stdout.split()
+    assert int(out[-1]) == GC_THRESHOLD != before[0]
