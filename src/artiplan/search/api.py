@@ -139,6 +139,43 @@ DELTAS = (1.0, 0.5, 0.25, 0.1, 0.05)
 SEPARATE_S = 10.0
 
 
+def goal_behind_comparisons(task: Task) -> bool:
+    """True if a goal fact not true initially is added only by actions, each of which needs a
+    nonlinear comparison to hold (``capture`` when the squared distance is below a radius).
+    The rate heuristic reads a linear comparison's rate of change, not a nonlinear one's:
+    such a goal looks one action away from every state, and the numeric relaxation, which
+    reads it, is the one to try first."""
+    from artiplan.pddl.task import Atom, BinOp
+    from artiplan.semantics.walks import condition_parts, conjuncts, linear
+
+    def nonlinear(cond: Any) -> bool:
+        return any(linear(BinOp("-", c.left, c.right)) is None
+                   for c in condition_parts(cond)[2])
+
+    goal_facts = {c.fact for c in conjuncts(task.goal) if isinstance(c, Atom)}
+    goal_facts -= set(task.init_facts)
+    if not goal_facts:
+        return False
+    adders: dict[int, list[bool]] = {f: [] for f in goal_facts}  # fact -> gated, per adder
+
+    def note(effect: Any, gated: bool, is_action: bool) -> None:
+        for f in effect.add:
+            if f in adders:
+                adders[f].append(gated and is_action)
+        for ce in effect.conditional:
+            note(ce.effect, gated or nonlinear(ce.condition), is_action)
+
+    for op in task.actions:
+        note(op.effect, nonlinear(op.precondition), True)
+    for ev in task.events:
+        note(ev.effect, False, False)
+    for pr in task.processes:
+        for f in pr.discrete.add:
+            if f in adders:
+                adders[f].append(False)
+    return any(gates and all(gates) for gates in adders.values())
+
+
 def schedule(numeric_first: bool = False) -> Iterator[Attempt]:
     """The attempts in order: ``FIRST``, then rounds of (numeric, rate) with doubled budgets
     and finer steps, ending with an unbounded numeric search on the finest step.
@@ -283,8 +320,9 @@ class _Planning:
         try:
             from artiplan.search.motion import find_controls, find_motions
 
-            second_order = bool(find_motions(self.task, find_controls(self.task)))
-            for n, attempt in enumerate(schedule(second_order), 1):
+            numeric_first = bool(find_motions(self.task, find_controls(self.task))) or \
+                goal_behind_comparisons(self.task)
+            for n, attempt in enumerate(schedule(numeric_first), 1):
                 kind = (attempt.numeric, attempt.delta)
                 if kind in exhausted:
                     continue  # the same operators searched their whole space already
