@@ -84,4 +84,3 @@ def test_the_second_view_is_what_a_full_compile_gives(tmp_path: Path, first_stri
         # the first view is unchanged by the second (its operators are not the copies)
         assert all(a is not b for a, b in zip(first.actions, second.actions, strict=True))
         assert first.strict is first_strict
-

@@ -16,7 +16,7 @@ import time
 from collections.abc import Callable, Iterator
 
 from artiplan.errors import InvalidPlanError, UsageError
-from artiplan.pddl.task import Task
+from artiplan.pddl.task import Atom, Condition, Effect, Task
 from artiplan.records import dataclass, names, replace
 from artiplan.search.engine import Search, SearchConfig, SearchOutcome, Successors, initial_node
 from artiplan.search.heuristic import Heuristic, HeuristicConfig, RateHeuristic
@@ -29,6 +29,7 @@ from artiplan.semantics.kernel import Kernel
 from artiplan.semantics.plan import Plan, TimedAction, TimedEvent, fold_durative
 from artiplan.semantics.results import PlanResult, PlanStats, PlanStatus, margins_of
 from artiplan.semantics.validator import ValidationReport, enabled_initial_events, validate
+from artiplan.semantics.walks import condition_parts, conjuncts, linear_difference
 from artiplan.tolerances import VAL_EVENT_WINDOW, VAL_TIME_TOLERANCE
 
 TYPE_CHECKING = False  # read as true by mypy; typing is not imported at run time (start-up)
@@ -145,20 +146,15 @@ def goal_behind_comparisons(task: Task) -> bool:
     The rate heuristic reads a linear comparison's rate of change, not a nonlinear one's:
     such a goal looks one action away from every state, and the numeric relaxation, which
     reads it, is the one to try first."""
-    from artiplan.pddl.task import Atom, BinOp
-    from artiplan.semantics.walks import condition_parts, conjuncts, linear
+    def nonlinear(cond: Condition) -> bool:
+        return any(linear_difference(c) is None for c in condition_parts(cond)[2])
 
-    def nonlinear(cond: Any) -> bool:
-        return any(linear(BinOp("-", c.left, c.right)) is None
-                   for c in condition_parts(cond)[2])
-
-    goal_facts = {c.fact for c in conjuncts(task.goal) if isinstance(c, Atom)}
-    goal_facts -= set(task.init_facts)
+    goal_facts = {c.fact for c in conjuncts(task.goal) if isinstance(c, Atom)} - task.init_facts
     if not goal_facts:
         return False
     adders: dict[int, list[bool]] = {f: [] for f in goal_facts}  # fact -> gated, per adder
 
-    def note(effect: Any, gated: bool, is_action: bool) -> None:
+    def note(effect: Effect, gated: bool, is_action: bool) -> None:
         for f in effect.add:
             if f in adders:
                 adders[f].append(gated and is_action)

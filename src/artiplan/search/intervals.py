@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import math
 
-from artiplan.pddl.task import And, BinOp, Comparison, Condition, Not, Or, Truth
+from artiplan.pddl.task import And, Comparison, Condition, Not, Or, Truth
 from artiplan.records import dataclass
-from artiplan.semantics.walks import linear
+from artiplan.semantics.walks import linear_difference
 
 Intervals = tuple[tuple[float, float], ...]
 EVERYTHING: Intervals = ((-math.inf, math.inf),)
@@ -71,7 +71,7 @@ def condition_set(cond: Condition, fluent: int) -> Intervals | None:
         return acc
     if not isinstance(cond, Comparison):
         return None
-    lin = linear(BinOp("-", cond.left, cond.right))
+    lin = linear_difference(cond)
     if lin is None or set(lin[0]) != {fluent}:
         return None
     a, b = lin[0][fluent], lin[1]

@@ -29,7 +29,6 @@ from collections.abc import Callable, Sequence
 
 from artiplan.pddl.task import (
     Atom,
-    BinOp,
     Comparison,
     Condition,
     Const,
@@ -39,7 +38,7 @@ from artiplan.pddl.task import (
 from artiplan.records import dataclass, field
 from artiplan.search.profile import Profile, Rate, box_profile
 from artiplan.semantics.compiled import written_fluents
-from artiplan.semantics.walks import conjuncts, fluents_of, linear
+from artiplan.semantics.walks import conjuncts, fluents_of, linear, linear_difference
 
 Values = tuple[float, ...]
 #: Most levels a control may take for the relaxation to step through them.
@@ -76,7 +75,7 @@ class Control:
 def bound_of(comp: Comparison, fluent: int) -> tuple[str, float, bool] | None:
     """``comp`` as a bound on ``fluent`` alone: (``"hi"`` or ``"lo"``, value, strict), or None
     (``=`` gives None: read it as two bounds with :func:`bounds_of`)."""
-    lin = linear(BinOp("-", comp.left, comp.right))
+    lin = linear_difference(comp)
     if lin is None or set(lin[0]) != {fluent} or comp.op == "=":
         return None
     g, c = lin[0][fluent], lin[1]
@@ -93,7 +92,7 @@ def bounds_of(comps: Sequence[Comparison], fluent: int) -> tuple[float, float]:
     lo, hi = -math.inf, math.inf
     for comp in comps:
         if comp.op == "=":
-            lin = linear(BinOp("-", comp.left, comp.right))
+            lin = linear_difference(comp)
             if lin is not None and set(lin[0]) == {fluent} and lin[0][fluent]:
                 at = -lin[1] / lin[0][fluent]
                 lo, hi = max(lo, at), min(hi, at)
@@ -109,7 +108,7 @@ def bounds_of(comps: Sequence[Comparison], fluent: int) -> tuple[float, float]:
 
 
 def _single_fluent(comp: Comparison) -> int | None:
-    lin = linear(BinOp("-", comp.left, comp.right))
+    lin = linear_difference(comp)
     if lin is None or len(lin[0]) != 1:
         return None
     return next(iter(lin[0]))

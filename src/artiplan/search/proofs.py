@@ -19,7 +19,6 @@ import math
 from artiplan.pddl.task import (
     And,
     Atom,
-    BinOp,
     Comparison,
     Condition,
     Effect,
@@ -30,7 +29,7 @@ from artiplan.pddl.task import (
     Truth,
 )
 from artiplan.semantics.compiled import fact_literals
-from artiplan.semantics.walks import fluents_of, linear
+from artiplan.semantics.walks import fluents_of, linear, linear_difference
 
 Interval = tuple[float, float]
 
@@ -152,7 +151,7 @@ def _possible(cond: Condition, b: list[Interval], pos: set[int], neg: set[int]) 
 
 
 def _comparison_possible(cond: Comparison, b: list[Interval]) -> set[bool]:
-    lin = linear(BinOp("-", cond.left, cond.right))
+    lin = linear_difference(cond)
     if lin is None:
         return {True, False}
     lo = hi = lin[1]

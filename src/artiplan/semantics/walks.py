@@ -229,6 +229,11 @@ def linear(expr: NumExpr) -> Linear | None:
     return None
 
 
+def linear_difference(comp: Comparison) -> Linear | None:
+    """``left - right`` of ``comp`` as :func:`linear` reads it (None if not linear)."""
+    return linear(BinOp("-", comp.left, comp.right))
+
+
 def to_poly(expr: NumExpr, poly_of: Callable[[int], P.Poly | None]) -> P.Poly | None:
     """``expr`` as a polynomial in elapsed time given each fluent's (``poly_of``); None when
     it is not one (a quotient by a changing value, a fractional power of one)."""
