@@ -81,6 +81,28 @@ def timed(cmd: list[str], env: dict[str, str]) -> tuple[float, int]:
     return wall, proc.returncode
 
 
+def read_sides(ap: argparse.ArgumentParser, args: argparse.Namespace) -> dict[str, Path]:
+    """The versions to run, label -> src/ (``--src``, ``--old-src``, every ``--other``),
+    bytecode-compiled: a tree without it pays for compiling its modules in every process."""
+    sides: dict[str, Path] = {"new": args.src.resolve()}
+    if args.old_src is not None:
+        sides["old"] = args.old_src.resolve()
+    for item in args.other:
+        label, _, src = item.partition("=")
+        if not src or label in sides or label == "kairos":
+            ap.error(f"--other wants LABEL=SRC with a new label, got {item!r}")
+        sides[label] = Path(src).resolve()
+    for src in sides.values():
+        subprocess.run([sys.executable, "-m", "compileall", "-q", str(src)], check=True)
+    return sides
+
+
+def problem_files(suite: Path, pid: str) -> tuple[Path, Path]:
+    """Domain and problem files of ``FAMILY/NAME`` in a suite folder."""
+    family, name = pid.split("/")
+    return suite / family / "domain.pddl", suite / family / f"{name}.pddl"
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
     ap.add_argument("problems", nargs="*", default=list(PROBLEMS),
@@ -98,16 +120,7 @@ def main() -> None:
     ap.add_argument("-o", "--out", type=Path, help="write every run's numbers here (JSON)")
     args = ap.parse_args()
 
-    sides: dict[str, Path] = {"new": args.src.resolve()}
-    if args.old_src is not None:
-        sides["old"] = args.old_src.resolve()
-    for item in args.other:
-        label, _, src = item.partition("=")
-        if not src or label in sides or label == "kairos":
-            ap.error(f"--other wants LABEL=SRC with a new label, got {item!r}")
-        sides[label] = Path(src).resolve()
-    for src in sides.values():
-        subprocess.run([sys.executable, "-m", "compileall", "-q", str(src)], check=True)
+    sides = read_sides(ap, args)
     load_before = load_average()
     if load_before > MAX_LOAD:
         print(f"warning: load average {load_before:.2f} > {MAX_LOAD}: numbers doubtful",
@@ -125,9 +138,7 @@ def main() -> None:
         start = [sys.executable, str(script)] if args.entry == "script" else \
             [sys.executable, "-m", "artiplan"]
         for pid in args.problems:
-            family, name = pid.split("/")
-            domain = args.suite / family / "domain.pddl"
-            problem = args.suite / family / f"{name}.pddl"
+            domain, problem = problem_files(args.suite, pid)
             cmds: dict[str, tuple[list[str], dict[str, str]]] = {}
             for side, src in sides.items():
                 out = str(Path(tmp) / f"{side}.plan")

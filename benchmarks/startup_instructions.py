@@ -24,11 +24,7 @@ import tempfile
 import time
 from pathlib import Path
 
-from startup import CONSOLE_SCRIPT
-
-HERE = Path(__file__).resolve()
-NEW_SRC = HERE.parents[1] / "src"
-PROBLEMS = ["ng/p3-1", "ucm-0.5/p3-1", "uacm-0.5/p3-1"]
+from startup import CONSOLE_SCRIPT, PROBLEMS, SRC, problem_files, read_sides
 
 
 def instructions(command: list[str], env: dict[str, str]) -> int:
@@ -45,10 +41,10 @@ def instructions(command: list[str], env: dict[str, str]) -> int:
 
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("problems", nargs="*", default=PROBLEMS,
-                    help=f"FAMILY/NAME under --suite (default: {PROBLEMS})")
+    ap.add_argument("problems", nargs="*", default=list(PROBLEMS),
+                    help="FAMILY/NAME under --suite (default: %(default)s)")
     ap.add_argument("--suite", type=Path, required=True, help="a suite folder (artiplan suite)")
-    ap.add_argument("--src", type=Path, default=NEW_SRC, help="src/ of the new version")
+    ap.add_argument("--src", type=Path, default=SRC, help="src/ of the new version")
     ap.add_argument("--old-src", type=Path, required=True, help="src/ of the old version")
     ap.add_argument("--other", action="append", default=[], metavar="LABEL=SRC",
                     help="another version's src/ as a column of its own (repeatable)")
@@ -56,8 +52,7 @@ def main() -> None:
     args = ap.parse_args()
     if shutil.which("valgrind") is None:
         raise SystemExit("valgrind not found (Debian package valgrind)")
-    sides = {"new": args.src, "old": args.old_src}
-    sides.update(dict(o.split("=", 1) for o in args.other))  # type: ignore[misc]
+    sides = read_sides(ap, args)
     out: dict[str, object] = {"date": time.strftime("%Y-%m-%d %H:%M UTC", time.gmtime()),
                               "python": sys.version.split()[0], "problems": {}}
     with tempfile.TemporaryDirectory() as tmp:
@@ -67,12 +62,10 @@ def main() -> None:
         out["python_c_pass"] = base
         print(f"python -c pass: {base / 1e6:.1f} M instructions")
         for prob in args.problems:
-            family, name = prob.split("/")
-            domain = args.suite / family / "domain.pddl"
-            problem = args.suite / family / f"{name}.pddl"
+            domain, problem = problem_files(args.suite, prob)
             counts = {}
             for label, src in sides.items():
-                env = dict(os.environ, PYTHONPATH=str(Path(src).resolve()))
+                env = dict(os.environ, PYTHONPATH=str(src))
                 counts[label] = instructions([sys.executable, str(script), "plan", str(domain),
                                               str(problem), "-q", "-o", f"{tmp}/{label}.plan"],
                                              env)
