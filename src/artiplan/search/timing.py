@@ -9,7 +9,9 @@ events, with the kernel's exact trajectory as the model:
 
     margins(times) = [robustness(c) for each condition c read]
 
-kept >= 2 * margin by scipy's SLSQP (finite differences) over the gaps between happenings,
+kept >= 2 * margin over the gaps between happenings by sequential quadratic programming of
+our own (SLSQP's scheme with a zero objective: forward-difference Jacobians, a damped BFGS
+curvature estimate, an L1 merit; scipy's SLSQP did this before and cost ~0.55 s of import),
 stopping at the first point where every margin is >= 1.5 * margin; actions that the skeleton
 applies one ``epsilon`` apart stay ``epsilon`` apart. The caller validates the result like any
 plan (the kernel, not the optimiser, is the judge).
@@ -169,41 +171,185 @@ def _solve(prob: TimingProblem, settings: Repair,
         return prob.times(prob.x0)
     if min(start) <= -FAILED:
         return None
-
-    # imported only now: most repairs end above (scipy.optimize costs ~0.6-1 s CPU to import)
-    from scipy.optimize import minimize
-
-    found: list[list[float]] = []
-
-    def cons(x: Sequence[float]) -> list[float]:
-        if check is not None:
-            check()
-        margins = prob.margins(x, rounded=False)
-        if min(margins) >= 1.5 * mu:  # feasible with room for the rounding: done
-            found.append(list(x))
-            raise _Feasible
-        return [m - 2.0 * mu for m in margins]
-
-    # find a point where every margin holds (SLSQP linearises them all, held ones too, so
-    # a window's far side is seen before it is crossed); the first such point ends it
-    x0 = list(prob.x0)
-    try:
-        minimize(lambda x: 0.0, x0, method="SLSQP", bounds=[(0.0, None)] * len(x0),
-                 constraints=[{"type": "ineq", "fun": cons}],
-                 options={"maxiter": settings.max_evals // max(2, len(x0) + 1),
-                          "ftol": 1e-12})
-    except _Feasible:
-        pass
-    except (ValueError, FloatingPointError, ArithmeticError):
-        return None
-    for x in found:
-        if min(prob.margins(x)) >= mu:
-            return prob.times(x)
+    x = _feasible_point(prob, settings, start, check)
+    if x is not None and min(prob.margins(x)) >= mu:
+        return prob.times(x)
     return None
 
 
-class _Feasible(Exception):
-    """Raised inside the optimiser to stop it at the first feasible point."""
+def _feasible_point(prob: TimingProblem, settings: Repair, margins: list[float],
+                    check: Callable[[], None] | None) -> list[float] | None:
+    """A point ``x >= 0`` where every margin is >= 1.5 * margin, by sequential quadratic
+    programming on the feasibility problem (as SLSQP with a zero objective).
+
+    Each step minimises ``d' B d / 2`` subject to ``c + J d >= 0`` and ``x + d >= 0``
+    (``c``: the margins less 2 * margin; ``J``: their forward-difference Jacobian; every
+    condition linearised, held ones too, so a window's far side is seen before it is
+    crossed). ``B`` is a damped BFGS estimate of the curvature of the conditions weighted by
+    the step's multipliers (a distance that must fall below a radius curves: without it the
+    steps zigzag past its minimum). The step is halved until the total shortfall drops by a
+    share of it (Armijo). None when a step gains nothing or the budget of trajectory
+    simulations is spent."""
+    mu = settings.margin
+    x = list(prob.x0)
+    n = len(x)
+    evals = prob.evals
+    hess = [[1.0 if i == j else 0.0 for j in range(n)] for i in range(n)]
+    c = [m - 2.0 * mu for m in margins]
+    last: tuple[list[float], list[float], list[list[float]], list[float]] | None = None
+    while prob.evals - evals + n + 1 <= settings.max_evals:
+        if check is not None:
+            check()
+        jac = _jacobian(prob, x, c, 2.0 * mu)
+        if last is not None:
+            _bfgs(hess, last, x, jac)
+        rows = [(a, -v) for a, v in zip(jac, c, strict=True)]
+        rows.extend(([1.0 if k == j else 0.0 for k in range(n)], -x[j]) for j in range(n))
+        d, lam = _qp_step(hess, rows)
+        now = _shortfall(c)
+        alpha = 1.0
+        for _ in range(_HALVINGS):
+            trial = [max(0.0, xj + alpha * dj) for xj, dj in zip(x, d, strict=True)]
+            m = prob.margins(trial, rounded=False)
+            if min(m) >= 1.5 * mu:
+                return trial
+            ct = [v - 2.0 * mu for v in m]
+            # Armijo on the L1 merit: a step that solves its QP predicts the whole shortfall
+            # gone, so at least a 1e-4 share of it must go (creeping at a corner stops)
+            if _shortfall(ct) <= (1.0 - 1e-4 * alpha) * now:
+                last = (x, lam[:len(c)], jac, trial)
+                x, c = trial, ct
+                break
+            alpha *= 0.5
+        else:
+            return None
+    return None
+
+
+def _shortfall(c: Sequence[float]) -> float:
+    """How far the conditions are from holding, summed (an L1 merit)."""
+    return sum(-v for v in c if v < 0.0)
+
+
+def _jacobian(prob: TimingProblem, x: list[float], c: list[float],
+              shift: float) -> list[list[float]]:
+    """Forward differences of ``c = margins(x) - shift``, a row per condition."""
+    jac: list[list[float]] = [[] for _ in c]
+    for j in range(len(x)):
+        h = _STEP * max(1.0, abs(x[j]))
+        xh = list(x)
+        xh[j] += h
+        for row, v, v0 in zip(jac, prob.margins(xh, rounded=False), c, strict=True):
+            row.append((v - shift - v0) / h)
+    return jac
+
+
+def _bfgs(hess: list[list[float]],
+          last: tuple[list[float], list[float], list[list[float]], list[float]],
+          x: list[float], jac: list[list[float]]) -> None:
+    """Powell-damped BFGS update of ``hess`` in place, from the step ``x_old -> x`` and the
+    change of the Lagrangian's gradient ``-sum(lam * grad c)`` over it."""
+    x_old, lam, jac_old, _ = last
+    n = len(x)
+    s = [a - b for a, b in zip(x, x_old, strict=True)]
+    y = [0.0] * n
+    for li, row, row_old in zip(lam, jac, jac_old, strict=True):
+        if li:
+            for k in range(n):
+                y[k] -= li * (row[k] - row_old[k])
+    bs = [sum(hess[i][k] * s[k] for k in range(n)) for i in range(n)]
+    sbs = sum(a * b for a, b in zip(s, bs, strict=True))
+    sy = sum(a * b for a, b in zip(s, y, strict=True))
+    if sbs <= 1e-300:
+        return
+    if sy < 0.2 * sbs:  # Powell's damping keeps the estimate positive definite
+        theta = 0.8 * sbs / (sbs - sy)
+        y = [theta * a + (1.0 - theta) * b for a, b in zip(y, bs, strict=True)]
+        sy = sum(a * b for a, b in zip(s, y, strict=True))
+    if sy <= 1e-300:
+        return
+    for i in range(n):
+        for k in range(n):
+            hess[i][k] += y[i] * y[k] / sy - bs[i] * bs[k] / sbs
+
+
+def _qp_step(hess: list[list[float]],
+             rows: Sequence[tuple[Sequence[float], float]]) -> tuple[list[float], list[float]]:
+    """The ``d`` minimising ``d' B d / 2`` (nearly) with ``a . d >= b`` for every ``(a, b)``
+    of ``rows``, and the rows' multipliers; by Hildreth's dual coordinate ascent after the
+    change of variables ``z = L' d`` (``B = L L'``), each row scaled to unit length and
+    softened by ``_SOFT`` (conflicting rows give a compromise, not a divergence). Rows with
+    ``a = 0`` are left out: no step changes them to first order."""
+    n = len(hess)
+    low = _cholesky(hess)
+    unit: list[tuple[list[float], float, float, int]] = []
+    for i, (a, b) in enumerate(rows):
+        g = _solve_lower(low, list(a))  # a . d = a . L'^-1 z = (L^-1 a) . z
+        norm = math.sqrt(sum(v * v for v in g))
+        if norm > 0.0 and math.isfinite(norm) and math.isfinite(b):
+            unit.append(([v / norm for v in g], b / norm, norm, i))
+    z = [0.0] * n
+    lam = [0.0] * len(unit)
+    tol = 1e-12 * (1.0 + max((abs(u[1]) for u in unit), default=0.0))
+    for _ in range(_SWEEPS):
+        biggest = 0.0
+        for i, (a, b, _, _) in enumerate(unit):
+            az = sum(ak * zk for ak, zk in zip(a, z, strict=True))
+            new = max(0.0, lam[i] + (b - az - _SOFT * lam[i]) / (1.0 + _SOFT))
+            step = new - lam[i]
+            if step:
+                lam[i] = new
+                for k in range(n):
+                    z[k] += step * a[k]
+                biggest = max(biggest, abs(step))
+        if biggest <= tol:
+            break
+    d = _solve_upper(low, z)
+    mult = [0.0] * len(rows)
+    for li, (_, _, norm, i) in zip(lam, unit, strict=True):
+        mult[i] = li / norm
+    return d, mult
+
+
+def _cholesky(a: list[list[float]]) -> list[list[float]]:
+    """Lower-triangular ``L`` with ``L L' = a`` (``a`` symmetric positive definite; a
+    pivot that is not positive is floored, so a worn estimate still gives a step)."""
+    n = len(a)
+    low = [[0.0] * n for _ in range(n)]
+    for i in range(n):
+        for j in range(i + 1):
+            s = a[i][j] - sum(low[i][k] * low[j][k] for k in range(j))
+            if i == j:
+                low[i][i] = math.sqrt(max(s, 1e-12))
+            else:
+                low[i][j] = s / low[j][j]
+    return low
+
+
+def _solve_lower(low: list[list[float]], b: list[float]) -> list[float]:
+    """``L^-1 b`` for lower-triangular ``L``."""
+    out: list[float] = []
+    for i, row in enumerate(low):
+        out.append((b[i] - sum(row[k] * out[k] for k in range(i))) / row[i])
+    return out
+
+
+def _solve_upper(low: list[list[float]], b: list[float]) -> list[float]:
+    """``L'^-1 b`` for lower-triangular ``L``."""
+    n = len(low)
+    out = [0.0] * n
+    for i in reversed(range(n)):
+        out[i] = (b[i] - sum(low[k][i] * out[k] for k in range(i + 1, n))) / low[i][i]
+    return out
+
+
+#: Forward-difference step [s] per second of gap (at least this many seconds).
+_STEP = 1e-7
+#: Step halvings tried before a linearisation is given up.
+_HALVINGS = 8
+#: Sweeps of Hildreth's method per step, and its softening of the rows.
+_SWEEPS = 300
+_SOFT = 1e-9
 
 
 __all__ = ["Repair", "TimingProblem", "margin_of", "repair_times"]
