@@ -137,3 +137,53 @@ def test_refusals_are_dropped_when_their_pair_moves_and_free_only_before_anythin
     r.count = 0
     r.refuse(rot("L2", "L3", "z-axis", 1), in_time=False)
     assert not r.free
+
+
+def test_arms_caught_go_home_and_their_refusals_are_tried_again() -> None:
+    from artiplan.execution.dispatch import Rotate
+    from artiplan.execution.refusals import MAX_ESCAPES, Refusals
+    from artiplan.semantics import TimedAction
+
+    def rot(hold: str, turn: str, direction: int) -> Rotate:
+        sign = "increase" if direction > 0 else "decrease"
+        return Rotate(TimedAction(1.0, f"start-{sign}", (hold, turn, "z-axis")), hold, turn,
+                      "z-axis", direction, 5.0)
+
+    r = Refusals()
+    r.refuse(rot("L2", "L3", 1), in_time=True)  # no collision-free grasp pair: stays refused
+    assert not r.stuck
+    r.refuse(rot("L1", "L2", 1), in_time=True, arms_caught=True)  # no arm motion found
+    assert r.stuck
+    r.escaped(moved=True)
+    assert not r.stuck and r.escapes == 1
+    assert r.refused == {("L2", "L3", "z-axis", "increase")}  # the motion refusal is gone
+    r.refuse(rot("L1", "L2", -1), in_time=True, arms_caught=True)
+    r.escaped(moved=False)  # no path home: the refusal stays
+    assert ("L1", "L2", "z-axis", "decrease") in r.refused
+    r.escapes = MAX_ESCAPES
+    r.refuse(rot("L1", "L2", 1), in_time=True, arms_caught=True)
+    assert not r.stuck  # the run's escapes are used up
+
+
+def test_the_world_sends_caught_arms_home_by_a_planned_motion() -> None:
+    import mujoco
+    import numpy as np
+
+    from artiplan.model import Configuration
+    from artiplan.world import make_world
+
+    conf = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
+    world = make_world(ArticulatedObject(4), conf, hands="baxter")
+    hands: Any = world.hands
+    assert world.arms_home() is False  # home already: nothing moves
+    q = hands.home["right"] + np.array([0.3, -0.25, 0.2, 0.35, 0.0, 0.2, 0.0])
+    world.data.qpos[hands._q["right"]] = q
+    hands._target_q["right"] = q.copy()
+    mujoco.mj_forward(world.model, world.data)
+    t, motions = world.time, len(hands.checker.stats)
+    assert world.arms_home() is True
+    assert world.time > t  # in simulated time, the world running
+    assert len(hands.checker.stats) > motions and hands.checker.stats[-1].ok  # planned
+    assert float(np.abs(world.data.qpos[hands._q["right"]] - hands.home["right"]).max()) < 0.05
+    virtual = make_world(ArticulatedObject(4), conf, hands="virtual")
+    assert virtual.arms_home() is False  # no arms to move

@@ -20,7 +20,16 @@ if TYPE_CHECKING:
 
 
 class ActionFailed(RuntimeError):
-    """The world could not carry out an action (unknown action, unreachable grasp, IK failure)."""
+    """The world could not carry out an action (unknown action, unreachable grasp, IK failure).
+
+    Attributes:
+        arms_caught: The grasps were fine but no arm motion to them was found from where the
+            arms are (:class:`artiplan.world.pairs.NoArmMotionError`): from home it may work.
+    """
+
+    def __init__(self, message: str, arms_caught: bool = False) -> None:
+        super().__init__(message)
+        self.arms_caught = arms_caught
 
 
 @dataclass(frozen=True)
@@ -136,7 +145,8 @@ def rotate(
         world.hold_and_rotate(step.hold, step.turn, step.plane, step.direction, speed,
                               reference=predicted, extent_deg=extent)
     except (ValueError, RuntimeError, FloatingPointError) as exc:
-        raise ActionFailed(f"{step.action.signature}: {exc}") from exc
+        raise ActionFailed(f"{step.action.signature}: {exc}",
+                           bool(getattr(exc, "arms_caught", False))) from exc
     sign = "+" if step.direction > 0 else "-"
     limit = getattr(world, "turn_limit", None)
     note = (f" (stops after {limit[0]:.0f} of {extent:.0f} deg: {limit[1]})"

@@ -198,6 +198,8 @@ class ClosedLoop:
     def _plan(self, reason: str, counted: bool = True) -> Prediction | None:
         """Perceive, build the problem, plan; log it (a re-plan when ``counted``, else a plan
         again after a refusal). None when no plan was found."""
+        if self.refusals.stuck:
+            self._escape()
         start = canonical(self._perceive_for_planning())
         t = time.perf_counter()
         result = self._solve(start)
@@ -237,6 +239,20 @@ class ClosedLoop:
                 (replace(iv, time=t0 + iv.fraction * span) if iv.fraction is not None else iv
                  for iv in self.pending), key=lambda i: i.time)
         return Prediction(self.obj, result.trajectory, t0, start)
+
+    def _escape(self) -> None:
+        """The arms found no way to the grasps from where they are (caught in the chain, say):
+        both go home first by planned motions, and the rotations refused for that are
+        planned with again."""
+        t = self.world.time
+        home = getattr(self.world, "arms_home", None)
+        moved = bool(home()) if home is not None else False
+        self.refusals.escaped(moved)
+        did = (f"both arms home ({self.world.time - t:.2f} s)" if moved
+               else "no path home found (or home already): arms left where they are")
+        self.log.happenings.append({"time": round(t, 4), "plan": len(self.log.plans) - 1,
+                                    "action": "(arms-home)", "ok": moved, "did": did})
+        self.progress(f"t={t:7.2f} s  arms caught: {did}")
 
     def _solve(self, start: Configuration) -> Any:
         """Plan from ``start``; not starting with a rotation the world has refused since the
@@ -342,7 +358,8 @@ class ClosedLoop:
         except ActionFailed as exc:
             did, ok = str(exc), False
             if isinstance(step, Rotate):  # planned around at the next re-plan
-                self.refusals.refuse(step, self.world.time < self.config.max_time)
+                self.refusals.refuse(step, self.world.time < self.config.max_time,
+                                     exc.arms_caught)
         if ok and isinstance(step, Rotate):
             self.refusals.turned(step, self.obj)
         if ok and self.world.time > now:  # the arms approached: the rotation starts now
@@ -384,7 +401,8 @@ class ClosedLoop:
             did, ok = rotate(self.world, step, r.speed, pred.at(now), remaining), True
         except ActionFailed as exc:
             did, ok = str(exc), False
-            self.refusals.refuse(step, self.world.time < self.config.max_time)
+            self.refusals.refuse(step, self.world.time < self.config.max_time,
+                                     exc.arms_caught)
         if ok:
             waited = self.world.time - now
             pred.t0 += waited

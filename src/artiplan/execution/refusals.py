@@ -22,6 +22,8 @@ Refusal = tuple[str, str, str, str]
 #: At most this many plans a run whose rotation the world refused before anything of them
 #: moved are planned again without spending the re-plan budget.
 MAX_FREE = 12
+#: At most this many times a run the arms go home when caught (no motion to a grasp found).
+MAX_ESCAPES = 3
 
 
 @dataclass
@@ -34,6 +36,10 @@ class Refusals:
         relaxed: Whether that plan was found only by ignoring ``refused``.
         free: Whether the last failure is a refusal free of the re-plan budget.
         count: Plans made again for free so far.
+        caught: Of ``refused``, those refused because no arm motion to the grasps was found
+            from where the arms were (they may work once the arms are home).
+        stuck: Whether the last refusal was one of those (the arms should go home first).
+        escapes: Times the arms went home so far.
     """
 
     refused: frozenset[Refusal] = frozenset()
@@ -41,17 +47,34 @@ class Refusals:
     relaxed: bool = False
     free: bool = False
     count: int = 0
+    caught: frozenset[Refusal] = frozenset()
+    stuck: bool = False
+    escapes: int = 0
 
-    def refuse(self, step: Rotate, in_time: bool) -> None:
-        """The world refused ``step``; ``in_time``: the run still has time to plan again."""
+    def refuse(self, step: Rotate, in_time: bool, arms_caught: bool = False) -> None:
+        """The world refused ``step``; ``in_time``: the run still has time to plan again;
+        ``arms_caught``: no arm motion to its grasps was found from where the arms are."""
         self.refused = self.refused | {refusal(step)}
         self.free = not self.moved and not self.relaxed and self.count < MAX_FREE and in_time
+        if arms_caught:
+            self.caught = self.caught | {refusal(step)}
+        self.stuck = arms_caught and self.escapes < MAX_ESCAPES
+
+    def escaped(self, moved: bool) -> None:
+        """The arms were sent home (``moved``: they went): the rotations refused for want of
+        an arm motion are tried again."""
+        self.stuck = False
+        self.escapes += 1
+        if moved:
+            self.refused = self.refused - self.caught
+            self.caught = frozenset()
 
     def turned(self, step: Rotate, obj: ArticulatedObject) -> None:
         """``step`` started: the pairs from its rotated link on have moved."""
         j = obj.index(step.turn)
         self.moved = True
         self.refused = frozenset(r for r in self.refused if obj.index(r[1]) < j)
+        self.caught = self.caught & self.refused
 
 
 def refusal(step: Rotate) -> Refusal:

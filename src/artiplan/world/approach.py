@@ -36,6 +36,7 @@ from artiplan.world.pairs import (  # noqa: F401 - re-exported (public names)
     PREGRASP_M,
     PREGRASP_STEPS,
     RETREAT_NEAR,
+    NoArmMotionError,
     NotExecutableError,
     PairChoice,
     along,
@@ -56,6 +57,9 @@ RETREAT_S = 0.5
 APPROACH_RETREAT_S = 0.0
 #: Share of ``approach_s`` the transfer takes at least (kept for the old name).
 PREGRASP_SHARE = 0.75
+#: How far [m] arms sent home (:meth:`ApproachMotion.go_home`) first back off along their
+#: approach axes.
+ESCAPE_RETREAT_M = 0.15
 #: Wall time [s] of each one-arm query when both arms' transfer is planned one by one.
 ONE_ARM_TIME_S = 1.0
 
@@ -131,14 +135,53 @@ class ApproachMotion(PairChoice):
                 np.concatenate([self._backed_off(h, distance) for h in moving])]
         self._run(moving, TimedPath(path, self.limits, duration_s), advance)
 
+    def go_home(self, advance: Callable[[float], None]) -> bool:
+        """Both open arms home (:attr:`home`) by planned motions, in simulated time (the world
+        advancing by ``advance(dt)``): they back off :data:`ESCAPE_RETREAT_M`, then one
+        collision-free transfer (14-D, else one arm after the other), timed within the joint
+        limits, then settling. The way out when the arms are caught in the chain (no motion
+        to a grasp found from where they are). False, nothing moved, when the arms are home
+        already, a hand still holds, or no path home is found."""
+        if any(self._held[h] is not None for h in self.names):
+            return False
+        starts = {h: self._actual(h) for h in self.names}
+        goals = self.idle_goals((), starts)
+        if not goals:
+            return False
+        moving = tuple(h for h in self.names if h in goals)
+        # further back than an approach's back-off: an arm caught in the chain gets out first
+        backoff = self._plan_backoff(ESCAPE_RETREAT_M, moving)
+        if backoff is not None:
+            starts.update(backoff.split_end())
+        chk = self.checker
+        chk.sync(self.data.qpos)
+        chk.set_arms(starts)
+        start = np.concatenate([starts[h] for h in moving])
+        goal = np.concatenate([goals[h] for h in moving])
+        path = plan_path(chk, self._ramp(Query(moving), start, goal), start, goal,
+                         self._bounds(moving))
+        if path is None and len(moving) == 2:
+            path = self._one_by_one(moving, starts, goals, {})
+        if path is None:
+            return False
+        home = TimedPath(path, self.limits)
+        self._record_paths([backoff, _Stage(moving, home)])
+        if backoff is not None:
+            self._run(backoff.hands, backoff.path, advance, 0.0)
+        self._run(moving, home, advance)
+        return True
+
     # -- planning the three motions ---------------------------------------------------------
-    def _plan_backoff(self) -> _Stage | None:
-        """The back-off of the opened hands near the object (None if there is none)."""
-        near = tuple(h for h in self.names if self._held[h] is None and self._near_object(h))
+    def _plan_backoff(self, distance: float = APPROACH_RETREAT_M,
+                      near: tuple[str, ...] | None = None) -> _Stage | None:
+        """The back-off ``distance`` [m] along their approach axes of the opened hands
+        ``near`` (default: those near the object); None if there is none."""
+        if near is None:
+            near = tuple(h for h in self.names if self._held[h] is None and self._near_object(h))
         if not near:
             return None
         start = np.concatenate([self._actual(h) for h in near])
-        goal = np.concatenate([self._backed_off(h, APPROACH_RETREAT_M) for h in near])
+        goal = np.concatenate([self._backed_off(h, distance) for h in near])
         self.checker.sync(self.data.qpos)
         query = Query(near, self._contacts_off(near), NEAR_CLEARANCE_M)
         path = plan_path(self.checker, self._ramp(query, start, goal), start, goal,
@@ -167,7 +210,7 @@ class ApproachMotion(PairChoice):
         if path is None and len(moving) == 2:
             path = self._one_by_one(moving, starts, goals, gripping)
         if path is None:
-            raise NotExecutableError(
+            raise NoArmMotionError(
                 "no collision-free arm motion found to the pre-grasp poses of "
                 + ", ".join(f"{h} on {cands[h].link}" for h in legs))
         return TimedPath(path, self.limits)

@@ -69,6 +69,14 @@ class NotExecutableError(RuntimeError):
     motion to it was found)."""
 
 
+class NoArmMotionError(NotExecutableError):
+    """The grasps were chosen, but no collision-free arm motion to them was found from where
+    the arms are: the arms may be caught in the chain, and from elsewhere (home) it may work."""
+
+    #: Read by the execution loop (which does not import the world): a way out may exist.
+    arms_caught = True
+
+
 def along(path: list[Vec], s: float) -> Vec:
     """Point of the piecewise-linear ``path`` (equal shares) at ``s`` in [0, 1]."""
     m = len(path) - 1

@@ -273,6 +273,14 @@ class World:
         m = self._motion
         return None if m is None else (m.hold_link, m.link, m.plane, m.direction)
 
+    def arms_home(self) -> bool:
+        """Open both hands and send the arms home by planned, collision-free motions (the
+        world runs meanwhile); False when these hands have no such motion (virtual hands), are
+        home already, or no path home was found."""
+        self.stop(release=True)
+        home = getattr(self.hands, "go_home", None)
+        return bool(home(self.step)) if home is not None else False
+
     def stop(self, release: bool = True) -> None:
         """Stop rotating; with ``release`` open both hands (the links become free), else keep
         holding both links where the rotation's command has reached."""
