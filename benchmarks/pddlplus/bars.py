@@ -60,8 +60,26 @@ def table(rows: list[Row]) -> str:
         lines.append(f"| {fam} | {counts['enhsp']} | {counts['kairos']} | {counts['artiplan']} | "
                      f"{bar} | {crashes} | {speed} |")
     lines.append(f"| **total** | {totals['enhsp']} | {totals['kairos']} | {totals['artiplan']} "
-                 "| | | |")
+                 f"| | | {pooled(by, families)} |")
     return "\n".join(lines) + "\n"
+
+
+def pooled(by: dict[tuple[str, str], dict[int, Row]], families: list[str]) -> str:
+    """The time bar read over all families at once: median CPU of each planner over every
+    instance all three solve, artiplan against the peer whose median is lower."""
+    cpu: dict[str, list[float]] = {p: [] for p in (*PEERS, "artiplan")}
+    for fam in families:
+        runs = {p: by.get((fam, p), {}) for p in cpu}
+        for s in runs["artiplan"]:
+            if all(solved(runs[p].get(s)) for p in runs):
+                for p in cpu:
+                    cpu[p].append(runs[p][s]["cpu_s"])
+    if not cpu["artiplan"]:
+        return "no instance solved by all three"
+    med = {p: statistics.median(v) for p, v in cpu.items()}
+    peer = min(PEERS, key=lambda p: med[p])
+    return (f"all families pooled: {med['artiplan']:.2f} s / {med[peer]:.2f} s ({peer}; "
+            f"{len(cpu['artiplan'])} instances)")
 
 
 def main(argv: list[str] | None = None) -> int:
