@@ -217,3 +217,56 @@ def test_baxter_beyond_six_links_is_a_usage_error(tmp_path) -> None:  # type: ig
     )
     assert proc.returncode == 2, proc.stderr
     assert "up to 6 links" in proc.stderr + proc.stdout
+
+
+def _reference_contacts(chk, query):  # type: ignore[no-untyped-def]
+    """What ArmChecker.contacts means, written plainly (the data after set_arms)."""
+    m, d = chk.model, chk.data
+    mujoco.mj_kinematics(m, d)
+    mujoco.mj_collision(m, d)
+    ks = [chk._names.index(h) for h in query.hands]
+    out = []
+    for i in range(d.ncon):
+        a, b = int(d.contact.geom[i][0]), int(d.contact.geom[i][1])
+        o1, o2 = int(chk._owner[a]), int(chk._owner[b])
+        if o1 not in ks and o2 not in ks:
+            continue
+        if query.pairs == "solo" and o1 >= 0 and o2 >= 0:
+            continue
+        if query.pairs == "arms" and (o1 < 0 or o2 < 0):
+            continue
+        if (min(a, b), max(a, b)) in query.allowed:
+            continue
+        dist = float(d.contact.dist[i])
+        out.append((a, b, dist) if o1 >= 0 else (b, a, dist))
+    return out
+
+
+def test_the_fast_validity_check_agrees_with_its_plain_definition() -> None:
+    from artiplan.world.motion import ramped
+
+    world = make_world(ArticulatedObject(4), CONF, hands="baxter")
+    chk = world.hands.checker  # type: ignore[attr-defined]
+    chk.sync(world.data.qpos.copy())
+    home = np.concatenate([world.data.qpos[chk.qadr[h]] for h in ("left", "right")])
+    rng = np.random.default_rng(11)
+    flats = [home + rng.normal(0.0, 0.5, 14) for _ in range(300)]
+    grip = chk.gripper["right"]
+    allowed = frozenset((min(int(g), chk.links["L3"]), max(int(g), chk.links["L3"])) for g in grip)
+    queries = [Query(("left", "right")), Query(("right",), allowed, NEAR_CLEARANCE_M, "solo"),
+               Query(("left", "right"), pairs="arms"),
+               Query(("left", "right"), clearance=ramped([(flats[0], 0.004), (flats[1], 0.03)]))]
+    seen = 0
+    for flat in flats:
+        for query in queries:
+            q = chk.split(query.hands, flat[: 7 * len(query.hands)])
+            chk.set_arms(q)
+            ref = _reference_contacts(chk, query)
+            chk.set_arms(q)
+            assert chk.contacts(query) == ref
+            need = query.clearance(flat[: 7 * len(query.hands)]) if callable(query.clearance) \
+                else query.clearance
+            assert chk.valid(q, query, flat[: 7 * len(query.hands)]) == all(
+                dist >= need for _, _, dist in ref)
+            seen += bool(ref)
+    assert seen > 100  # most checks had contacts to filter, not only empty ones

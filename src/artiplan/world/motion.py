@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import copy
 import functools
+import math
 import time
 from collections.abc import Callable
 from dataclasses import dataclass, field
@@ -47,6 +48,8 @@ PLAN_TIME_S = 2.0
 ATTEMPT_S = 0.3
 SIMPLIFY_TIME_S = 0.1
 ATTEMPTS = 3
+#: Share of a query's time kept for what follows RRT-Connect (the shortcut, overrun).
+FINISH_SHARE = 0.05
 #: ... fewer when a path is already this near (cost ratio) the straight segment's.
 GOOD_ENOUGH = 1.3
 #: Seed of OMPL's random generators (set once per process, before the first query).
@@ -131,6 +134,9 @@ class ArmChecker:
         for k, hand in enumerate(self.arm):
             self._owner[self.arm[hand]] = k
         self._names = list(self.arm)
+        # plain lists: the check reads a few contacts each time, where numpy's per-call
+        # overhead (isin, masks) cost more than MuJoCo's collision itself
+        self._owner_list: list[int] = [int(o) for o in self._owner]
 
     def sync(self, qpos: Vec) -> None:
         """Take the world's state (links, both arms) as the scene to check against, the
@@ -154,21 +160,21 @@ class ArmChecker:
         n = int(d.ncon)
         if n == 0:
             return []
-        pairs = np.asarray(d.contact.geom[:n])
-        dist = np.asarray(d.contact.dist[:n])
-        ks = [self._names.index(h) for h in query.hands]
-        o1, o2 = self._owner[pairs[:, 0]], self._owner[pairs[:, 1]]
-        own = np.isin(o1, ks) | np.isin(o2, ks)
-        if query.pairs == "solo":
-            own &= (o1 < 0) | (o2 < 0)
-        elif query.pairs == "arms":
-            own &= (o1 >= 0) & (o2 >= 0)
+        owner = self._owner_list
+        ks = {self._names.index(h) for h in query.hands}
+        mode, allowed = query.pairs, query.allowed
         out = []
-        for (a, b), dd in zip(pairs[own], dist[own], strict=True):
-            key = (int(min(a, b)), int(max(a, b)))
-            if key not in query.allowed:
-                first, second = (a, b) if self._owner[a] >= 0 else (b, a)
-                out.append((int(first), int(second), float(dd)))
+        for (a, b), dd in zip(d.contact.geom[:n].tolist(), d.contact.dist[:n].tolist(),
+                              strict=True):
+            o1, o2 = owner[a], owner[b]
+            if o1 not in ks and o2 not in ks:
+                continue
+            if (mode == "solo" and o1 >= 0 and o2 >= 0) or (mode == "arms"
+                                                           and (o1 < 0 or o2 < 0)):
+                continue
+            if ((a, b) if a < b else (b, a)) in allowed:
+                continue
+            out.append((a, b, dd) if o1 >= 0 else (b, a, dd))
         return out
 
     def clearance(self, q: dict[str, Vec], query: Query) -> tuple[float, str]:
@@ -184,13 +190,23 @@ class ArmChecker:
     def valid(self, q: dict[str, Vec], query: Query, flat: Vec | None = None) -> bool:
         """Whether ``q`` keeps the query's clearance (``flat``: q stacked, for ramps)."""
         need = query.clearance
-        if callable(need):
-            need = need(flat if flat is not None else np.concatenate(list(q.values())))
-        if need > MARGIN_M:
+        if not callable(need) and need > MARGIN_M:
             raise ValueError(f"a clearance of {need} m is beyond the contact margin "
                              f"({MARGIN_M} m): pairs that far apart are not seen")
         self.set_arms(q)
-        return all(dist >= need for _, _, dist in self.contacts(query))
+        found = self.contacts(query)
+        if not found:
+            return True
+        nearest = min(dist for _, _, dist in found)
+        if callable(need):
+            # a ramp never asks more than its full clearance: evaluate it only when needed
+            if isinstance(need, Ramp) and nearest >= need.full:
+                return True
+            need = need(flat if flat is not None else np.concatenate(list(q.values())))
+            if need > MARGIN_M:
+                raise ValueError(f"a clearance of {need} m is beyond the contact margin "
+                                 f"({MARGIN_M} m): pairs that far apart are not seen")
+        return nearest >= need
 
     def split(self, hands: tuple[str, ...], flat: Vec) -> dict[str, Vec]:
         """A stacked configuration (7 joints per hand, in ``hands`` order) per hand."""
@@ -210,20 +226,26 @@ class ArmChecker:
         return all(self.segment_valid(a, b, query) for a, b in zip(path, path[1:], strict=False))
 
 
-def ramped(
-    endpoints: list[tuple[Vec, float]], full: float = TRANSFER_CLEARANCE_M
-) -> Callable[[Vec], float]:
+class Ramp:
     """Required clearance [m] at q: ``full``, relaxed near each (configuration, its clearance)
-    endpoint to that clearance less 1 mm, growing by :data:`RAMP_M_PER_RAD` per radian away."""
+    endpoint to that clearance less 1 mm, growing by :data:`RAMP_M_PER_RAD` per radian away
+    (never more than ``full``)."""
 
-    def need(q: Vec) -> float:
-        out = full
-        for e, c in endpoints:
-            if c < full:
-                out = min(out, c - 0.001 + RAMP_M_PER_RAD * float(np.linalg.norm(q - e)))
+    def __init__(self, endpoints: list[tuple[Vec, float]], full: float) -> None:
+        self.full = full
+        self._near = [(np.asarray(e, dtype=float), c) for e, c in endpoints if c < full]
+
+    def __call__(self, q: Vec) -> float:
+        out = self.full
+        for e, c in self._near:
+            step = q - e
+            out = min(out, c - 0.001 + RAMP_M_PER_RAD * math.sqrt(float(np.dot(step, step))))
         return out
 
-    return need
+
+def ramped(endpoints: list[tuple[Vec, float]], full: float = TRANSFER_CLEARANCE_M) -> Ramp:
+    """The :class:`Ramp` of ``endpoints`` (configuration, its clearance [m]) up to ``full``."""
+    return Ramp(endpoints, full)
 
 
 def plan_path(
@@ -236,7 +258,8 @@ def plan_path(
 ) -> list[Vec] | None:
     """A collision-free joint-space path start -> goal (stacked per ``query.hands``) with
     RRT-Connect within ``bounds`` (lower, upper [rad]), simplified and checked again; None
-    when OMPL finds none in ``time_s`` [s] or the endpoints are invalid. The query's time and
+    when OMPL finds none or the endpoints are invalid. The whole query aims to end within
+    ``time_s`` [s] wall. The query's time and
     size are appended to ``checker.stats``."""
     t0, checks0 = time.perf_counter(), checker.checks
     path: list[Vec] | None = None
@@ -244,7 +267,10 @@ def plan_path(
     if checker.segment_valid(start, goal, query):  # the straight segment is free: done
         path = [start, goal]
     elif _endpoint_ok(checker, query, start) and _endpoint_ok(checker, query, goal):
-        path = _ompl(checker, query, start, goal, bounds, time_s)
+        # the whole query within time_s: what the checks took so far, and a share kept for
+        # the shortcut and OMPL's own overrun (queries ran 5-60 ms over their limit)
+        left = (time_s - (time.perf_counter() - t0)) * (1.0 - FINISH_SHARE)
+        path = _ompl(checker, query, start, goal, bounds, max(0.0, left))
         if path is not None:
             path = shortcut(checker, query, path)
         else:
