@@ -242,8 +242,8 @@ class ClosedLoop:
 
     def _escape(self) -> None:
         """The arms found no way to the grasps from where they are (caught in the chain, say):
-        both go home first by planned motions, and the rotations refused for that are
-        planned with again."""
+        both go home first by planned motions, and the rotations refused for that may be
+        planned again."""
         t = self.world.time
         home = getattr(self.world, "arms_home", None)
         moved = bool(home()) if home is not None else False
