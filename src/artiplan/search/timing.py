@@ -196,7 +196,7 @@ def _feasible_point(prob: TimingProblem, settings: Repair, margins: list[float],
     evals = prob.evals
     hess = [[1.0 if i == j else 0.0 for j in range(n)] for i in range(n)]
     c = [m - 2.0 * mu for m in margins]
-    last: tuple[list[float], list[float], list[list[float]], list[float]] | None = None
+    last: tuple[list[float], list[float], list[list[float]]] | None = None
     while prob.evals - evals + n + 1 <= settings.max_evals:
         if check is not None:
             check()
@@ -217,7 +217,7 @@ def _feasible_point(prob: TimingProblem, settings: Repair, margins: list[float],
             # Armijo on the L1 merit: a step that solves its QP predicts the whole shortfall
             # gone, so at least a 1e-4 share of it must go (creeping at a corner stops)
             if _shortfall(ct) <= (1.0 - 1e-4 * alpha) * now:
-                last = (x, lam[:len(c)], jac, trial)
+                last = (x, lam[:len(c)], jac)
                 x, c = trial, ct
                 break
             alpha *= 0.5
@@ -244,12 +244,12 @@ def _jacobian(prob: TimingProblem, x: list[float], c: list[float],
     return jac
 
 
-def _bfgs(hess: list[list[float]],
-          last: tuple[list[float], list[float], list[list[float]], list[float]],
+def _bfgs(hess: list[list[float]], last: tuple[list[float], list[float], list[list[float]]],
           x: list[float], jac: list[list[float]]) -> None:
     """Powell-damped BFGS update of ``hess`` in place, from the step ``x_old -> x`` and the
-    change of the Lagrangian's gradient ``-sum(lam * grad c)`` over it."""
-    x_old, lam, jac_old, _ = last
+    change of the Lagrangian's gradient ``-sum(lam * grad c)`` over it (``last``: the old
+    point, the step's multipliers and the old Jacobian)."""
+    x_old, lam, jac_old = last
     n = len(x)
     s = [a - b for a, b in zip(x, x_old, strict=True)]
     y = [0.0] * n

@@ -153,15 +153,7 @@ class ApproachMotion(PairChoice):
         backoff = self._plan_backoff(ESCAPE_RETREAT_M, moving)
         if backoff is not None:
             starts.update(backoff.split_end())
-        chk = self.checker
-        chk.sync(self.data.qpos)
-        chk.set_arms(starts)
-        start = np.concatenate([starts[h] for h in moving])
-        goal = np.concatenate([goals[h] for h in moving])
-        path = plan_path(chk, self._ramp(Query(moving), start, goal), start, goal,
-                         self._bounds(moving))
-        if path is None and len(moving) == 2:
-            path = self._one_by_one(moving, starts, goals, {})
+        path = self._transfer_path(moving, starts, goals, {})
         if path is None:
             return False
         home = TimedPath(path, self.limits)
@@ -196,24 +188,34 @@ class ApproachMotion(PairChoice):
     ) -> TimedPath:
         """The collision-free joint-space motion of ``moving`` from ``starts`` to ``goals``
         (the pre-grasp poses; home for an idle arm)."""
+        # A leg out of reach ends the transfer on the grasp itself: its gripper meets its link.
+        gripping = {h: cands[h].link for h in legs if np.array_equal(legs[h][0], legs[h][-1])}
+        path = self._transfer_path(moving, starts, goals, gripping)
+        if path is None:
+            raise NoArmMotionError(
+                "no collision-free arm motion found to the pre-grasp poses of "
+                + ", ".join(f"{h} on {cands[h].link}" for h in legs))
+        return TimedPath(path, self.limits)
+
+    def _transfer_path(
+        self, moving: tuple[str, ...], starts: dict[str, Vec], goals: dict[str, Vec],
+        gripping: dict[str, str],
+    ) -> list[Vec] | None:
+        """Stacked waypoints of a collision-free joint-space motion of ``moving`` from
+        ``starts`` to ``goals`` (14-D when both move, else or failing that one arm after the
+        other), or None; ``gripping``: hand -> the link its gripper may meet."""
         chk = self.checker
         chk.sync(self.data.qpos)
         chk.set_arms(starts)
         start = np.concatenate([starts[h] for h in moving])
         goal = np.concatenate([goals[h] for h in moving])
-        # A leg out of reach ends the transfer on the grasp itself: its gripper meets its link.
-        gripping = {h: cands[h].link for h in legs if np.array_equal(legs[h][0], legs[h][-1])}
         # Not the links the grippers have just let go of: the ramp lets them out of those
         # near the start only (afterwards the physics collides with them again).
         query = self._ramp(Query(moving, self.grip_pairs(gripping)), start, goal)
         path = plan_path(chk, query, start, goal, self._bounds(moving))
         if path is None and len(moving) == 2:
             path = self._one_by_one(moving, starts, goals, gripping)
-        if path is None:
-            raise NoArmMotionError(
-                "no collision-free arm motion found to the pre-grasp poses of "
-                + ", ".join(f"{h} on {cands[h].link}" for h in legs))
-        return TimedPath(path, self.limits)
+        return path
 
     def _one_by_one(
         self, moving: tuple[str, ...], starts: dict[str, Vec], goals: dict[str, Vec],

@@ -130,13 +130,14 @@ class ArmChecker:
                     np.bitwise_or.reduce(self.model.geom_conaffinity[start : start + num]))
                 self.model.body_margin[b] = float(self.model.geom_margin[start : start + num].max())
         self.data = mujoco.MjData(self.model)
-        self._owner = np.full(self.model.ngeom, -1)
+        # geom -> index of the arm it belongs to (-1: none); a plain list: the check reads a
+        # few contacts each time, where numpy's per-call overhead (isin, masks) cost more
+        # than MuJoCo's collision itself
+        self._owner: list[int] = [-1] * self.model.ngeom
         for k, hand in enumerate(self.arm):
-            self._owner[self.arm[hand]] = k
+            for g in self.arm[hand]:
+                self._owner[int(g)] = k
         self._names = list(self.arm)
-        # plain lists: the check reads a few contacts each time, where numpy's per-call
-        # overhead (isin, masks) cost more than MuJoCo's collision itself
-        self._owner_list: list[int] = [int(o) for o in self._owner]
 
     def sync(self, qpos: Vec) -> None:
         """Take the world's state (links, both arms) as the scene to check against, the
@@ -160,7 +161,7 @@ class ArmChecker:
         n = int(d.ncon)
         if n == 0:
             return []
-        owner = self._owner_list
+        owner = self._owner
         ks = {self._names.index(h) for h in query.hands}
         mode, allowed = query.pairs, query.allowed
         out = []
@@ -190,9 +191,8 @@ class ArmChecker:
     def valid(self, q: dict[str, Vec], query: Query, flat: Vec | None = None) -> bool:
         """Whether ``q`` keeps the query's clearance (``flat``: q stacked, for ramps)."""
         need = query.clearance
-        if not callable(need) and need > MARGIN_M:
-            raise ValueError(f"a clearance of {need} m is beyond the contact margin "
-                             f"({MARGIN_M} m): pairs that far apart are not seen")
+        if not callable(need):
+            _seen(need)
         self.set_arms(q)
         found = self.contacts(query)
         if not found:
@@ -202,10 +202,7 @@ class ArmChecker:
             # a ramp never asks more than its full clearance: evaluate it only when needed
             if isinstance(need, Ramp) and nearest >= need.full:
                 return True
-            need = need(flat if flat is not None else np.concatenate(list(q.values())))
-            if need > MARGIN_M:
-                raise ValueError(f"a clearance of {need} m is beyond the contact margin "
-                                 f"({MARGIN_M} m): pairs that far apart are not seen")
+            need = _seen(need(flat if flat is not None else np.concatenate(list(q.values()))))
         return nearest >= need
 
     def split(self, hands: tuple[str, ...], flat: Vec) -> dict[str, Vec]:
@@ -224,6 +221,14 @@ class ArmChecker:
 
     def path_valid(self, path: list[Vec], query: Query) -> bool:
         return all(self.segment_valid(a, b, query) for a, b in zip(path, path[1:], strict=False))
+
+
+def _seen(need: float) -> float:
+    """``need`` [m], a clearance the checks can see (not beyond :data:`MARGIN_M`)."""
+    if need > MARGIN_M:
+        raise ValueError(f"a clearance of {need} m is beyond the contact margin "
+                         f"({MARGIN_M} m): pairs that far apart are not seen")
+    return need
 
 
 class Ramp:
