@@ -42,6 +42,8 @@ def main() -> None:
                     help="the encodings' carry rule (EncodingOptions.carry)")
     ap.add_argument("--fall", choices=("uniform", "torque"), default="uniform",
                     help="UCM's fall speeds (EncodingOptions.fall)")
+    ap.add_argument("--max-replans", type=int, default=None,
+                    help="re-plan budget of a run (default: LoopConfig's)")
     ap.add_argument("--start", type=int, default=1, help="first task index")
     ap.add_argument("--logs", type=Path, default=None,
                     help="also write each run's full log here as task-K.json (for diagnosis)")
@@ -72,6 +74,8 @@ def main() -> None:
         config = replace(config, plan_tolerance_deg=args.plan_tol)
     if args.fallback_after is not None:
         config = replace(config, fallback_after=args.fallback_after)
+    if args.max_replans is not None:
+        config = replace(config, max_replans=args.max_replans)
     rows = []
     with args.out.open("a" if args.start > 1 else "w") as fh:
         for k in range(args.start, args.start + args.tasks):
@@ -92,7 +96,8 @@ def main() -> None:
                    "max_goal_error": log.final.get("max_goal_error"),
                    "hands": world.hands.kind, "model": args.model, "preset": args.preset,
                    "approach_s": args.approach, "reach_time": reach,
-                   "compensate": not args.no_compensate, "carry": args.carry, "fall": args.fall}
+                   "compensate": not args.no_compensate, "carry": args.carry, "fall": args.fall,
+                   "max_replans": config.max_replans}
             rows.append(row)
             if args.logs is not None:
                 args.logs.mkdir(parents=True, exist_ok=True)

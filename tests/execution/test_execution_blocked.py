@@ -5,6 +5,7 @@ moved), and planning again after a refusal that moved nothing is no re-plan."""
 from __future__ import annotations
 
 import random
+from dataclasses import replace
 from typing import Any
 
 import pytest
@@ -109,7 +110,7 @@ def test_plan_steps_map_each_action_once_with_its_own_stop() -> None:
     assert last.direction == -1 and last.duration is None
 
 
-def test_refusals_are_dropped_when_their_pair_moves_and_free_only_before_anything_moved() -> None:
+def test_refusals_are_dropped_when_their_pair_moves_and_free_up_to_a_budget() -> None:
     from artiplan.execution.dispatch import Rotate
     from artiplan.execution.refusals import MAX_FREE, Refusals, describe
     from artiplan.semantics import TimedAction
@@ -128,10 +129,10 @@ def test_refusals_are_dropped_when_their_pair_moves_and_free_only_before_anythin
     r.turned(rot("L3", "L4", "z-axis", 1), obj)  # L4 moved: only L3-L4's refusal goes
     assert r.refused == {("L2", "L3", "z-axis", "increase")}
     r.refuse(rot("L1", "L2", "z-axis", 1), in_time=True)
-    assert not r.free  # something of this plan has moved: a re-plan
+    assert r.free  # after part of the plan moved: still planning, not a re-plan
     r.turned(rot("L1", "L2", "xy-axes", 1), obj)  # L2 moved: every pair tip-ward of it too
     assert not r.refused
-    r.moved, r.count = False, MAX_FREE
+    r.count = MAX_FREE
     r.refuse(rot("L2", "L3", "z-axis", 1), in_time=True)
     assert not r.free  # the free ones are used up
     r.count = 0
@@ -187,3 +188,34 @@ def test_the_world_sends_caught_arms_home_by_a_planned_motion() -> None:
     assert float(np.abs(world.data.qpos[hands._q["right"]] - hands.home["right"]).max()) < 0.05
     virtual = make_world(ArticulatedObject(4), conf, hands="virtual")
     assert virtual.arms_home() is False  # no arms to move
+
+
+def test_a_plan_around_refusals_longer_than_the_time_left_is_replaced() -> None:
+    from artiplan.execution.loop import ClosedLoop
+    from artiplan.world import make_world
+
+    obj = ArticulatedObject(3)
+    init, target = random_pair(3, random.Random(6))
+    world = make_world(obj, init, hands="virtual", seed=6)
+    loop = ClosedLoop(world, target, LoopConfig(EncodingOptions("ng"), max_time=30.0), None, 6,
+                      None)
+    real = loop.planner.plan
+    asked: list[bool] = []
+
+    def stretched(domain: str, problem: str, **kw: Any) -> Any:
+        result = real(domain, problem, **kw)
+        asked.append("refused-" in problem)
+        if "refused-" in problem and result.plan is not None:  # around the refusal: too long
+            result.plan = replace(result.plan, actions=tuple(
+                replace(a, time=a.time * 100.0) for a in result.plan.actions))
+        return result
+
+    loop.planner.plan = stretched  # type: ignore[method-assign]
+    lines: list[str] = []
+    loop._say = lines.append
+    loop.refusals.refused = frozenset({("L1", "L2", "z-axis", "increase")})
+    result = loop._solve(init)
+    assert asked == [True, False]  # around the refusal first, then without it
+    span = max(result.plan.makespan, result.plan.end or 0.0)
+    assert span <= 30.0
+    assert any("planning again without the refusals" in line for line in lines)

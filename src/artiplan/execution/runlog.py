@@ -133,8 +133,8 @@ class RunLog:
     collisions: list[dict[str, Any]] = field(default_factory=list)
     #: Planned arm motions (Baxter): wall time [s], dimension (7/14), waypoints, success.
     motions: list[dict[str, Any]] = field(default_factory=list)
-    #: Plans made again because the world refused the last plan's first rotation before
-    #: anything moved (not re-plans: no plan was executed): time, reason, latency.
+    #: Plans made again because the world refused one of the last plan's rotations (not
+    #: re-plans, up to execution.refusals.MAX_FREE a run): time, reason, latency.
     refusals: list[dict[str, Any]] = field(default_factory=list)
 
     def to_dict(self) -> dict[str, Any]:
