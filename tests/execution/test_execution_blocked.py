@@ -161,6 +161,11 @@ def test_arms_caught_go_home_and_their_refusals_are_tried_again() -> None:
     r.refuse(rot("L1", "L2", -1), in_time=True, arms_caught=True)
     r.escaped(moved=False)  # no path home: the refusal stays
     assert ("L1", "L2", "z-axis", "decrease") in r.refused
+    r.refuse(rot("L1", "L2", 1), in_time=True, arms_caught=True)
+    assert not r.stuck  # no way home from here: not tried again before something turned
+    r.turned(rot("L2", "L3", 1), ArticulatedObject(4))
+    r.refuse(rot("L1", "L2", 1), in_time=True, arms_caught=True)
+    assert r.stuck
     r.escapes = MAX_ESCAPES
     r.refuse(rot("L1", "L2", 1), in_time=True, arms_caught=True)
     assert not r.stuck  # the run's escapes are used up

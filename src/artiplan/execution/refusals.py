@@ -44,6 +44,9 @@ class Refusals:
             from where the arms were (they may work once the arms are home).
         stuck: Whether the last refusal was one of those (the arms should go home first).
         escapes: Times the arms went home so far.
+        homeless: The last way home was not found, and nothing has turned since: from the
+            same state it would not be found again (measured: 3 escapes failed within 0.03 s
+            of simulated time, which left none for later).
     """
 
     refused: frozenset[Refusal] = frozenset()
@@ -52,6 +55,7 @@ class Refusals:
     caught: frozenset[Refusal] = frozenset()
     stuck: bool = False
     escapes: int = 0
+    homeless: bool = False
 
     def refuse(self, step: Rotate, in_time: bool, arms_caught: bool = False) -> None:
         """The world refused ``step``; ``in_time``: the run still has time to plan again;
@@ -60,13 +64,14 @@ class Refusals:
         self.free = self.count < MAX_FREE and in_time
         if arms_caught:
             self.caught = self.caught | {refusal(step)}
-        self.stuck = arms_caught and self.escapes < MAX_ESCAPES
+        self.stuck = arms_caught and self.escapes < MAX_ESCAPES and not self.homeless
 
     def escaped(self, moved: bool) -> None:
         """The arms were sent home (``moved``: they went): the rotations refused for want of
         an arm motion are tried again."""
         self.stuck = False
         self.escapes += 1
+        self.homeless = not moved
         if moved:
             self.refused = self.refused - self.caught
             self.caught = frozenset()
@@ -74,6 +79,7 @@ class Refusals:
     def turned(self, step: Rotate, obj: ArticulatedObject) -> None:
         """``step`` started: the pairs from its rotated link on have moved."""
         j = obj.index(step.turn)
+        self.homeless = False
         self.refused = frozenset(r for r in self.refused if obj.index(r[1]) < j)
         self.caught = self.caught & self.refused
 
