@@ -224,3 +224,32 @@ def test_a_plan_around_refusals_longer_than_the_time_left_is_replaced() -> None:
     span = max(result.plan.makespan, result.plan.end or 0.0)
     assert span <= 30.0
     assert any("planning again without the refusals" in line for line in lines)
+
+
+def test_no_plan_with_the_gravity_model_tries_the_fallback_model_before_giving_up() -> None:
+    from artiplan.semantics.results import PlanResult, PlanStatus
+    from artiplan.world import make_world
+
+    obj = ArticulatedObject(3)
+    init, target = random_pair(3, random.Random(6))
+    world = make_world(obj, init, hands="virtual", seed=6)
+    from artiplan.execution.loop import ClosedLoop
+
+    loop = ClosedLoop(world, target, LoopConfig(EncodingOptions("ucm", speed_g=0.5)), None, 6,
+                      None)
+    real = loop.planner.plan
+    models: list[str] = []
+
+    def ucm_times_out(domain: str, problem: str, **kw: Any) -> Any:
+        models.append("ucm" if "artiplan-ucm" in domain else "ng")
+        if models[-1] == "ucm":
+            return PlanResult(PlanStatus.TIMEOUT, message="time limit (injected)")
+        return real(domain, problem, **kw)
+
+    loop.planner.plan = ucm_times_out  # type: ignore[method-assign]
+    log = loop.run()
+    assert models[:2] == ["ucm", "ng"]
+    assert [p["status"] for p in log.plans[:2]] == ["timeout", "solved"]
+    assert log.plans[1]["model"] == "ng" and "no plan with the gravity model" in \
+        log.plans[1]["reason"]
+    assert not log.replans and not log.refusals and log.success

@@ -107,6 +107,12 @@ class ClosedLoop:
         counted = False
         while True:
             prediction = self._plan(reason, counted)
+            if prediction is None and self._fall_back():
+                # No plan with the gravity model in its time limit (measured: twice 60 s on
+                # a 6-link state): the fallback model's search is smaller; try it before
+                # giving up.
+                prediction = self._plan(f"{reason}; no plan with the gravity model", counted,
+                                        again=True)
             if prediction is None:
                 break
             self.refusals.free = False
@@ -172,14 +178,17 @@ class ClosedLoop:
             self.progress(f"t={self.world.time:7.2f} s  executing plan {index}: {done} of "
                           f"{total} actions dispatched, still monitoring")
 
-    def _fall_back(self) -> None:
-        """Switch to the fallback model (see ``LoopConfig.fallback_model``)."""
+    def _fall_back(self) -> bool:
+        """Switch to the fallback model (see ``LoopConfig.fallback_model``); False when there
+        is none or it is in use already."""
         model = self.config.fallback_model
-        if model is not None and model != self.encoding.model:
-            fall = self.encoding.fall if model == "ucm" else "uniform"  # ucm only
-            self.encoding = replace(self.encoding, model=cast(Model, model), fall=fall)
-            self.domain = domain_pddl(self.obj, self.encoding)
-            self.progress(f"falling back to the {model.upper()} model for the next plans")
+        if model is None or model == self.encoding.model:
+            return False
+        fall = self.encoding.fall if model == "ucm" else "uniform"  # ucm only
+        self.encoding = replace(self.encoding, model=cast(Model, model), fall=fall)
+        self.domain = domain_pddl(self.obj, self.encoding)
+        self.progress(f"falling back to the {model.upper()} model for the next plans")
+        return True
 
     def _may_replan(self) -> bool:
         return self.config.replan and self.replans < self.config.max_replans \
@@ -195,9 +204,10 @@ class ClosedLoop:
         conf, _ = self.kb.latest_configuration(None)
         return conf
 
-    def _plan(self, reason: str, counted: bool = True) -> Prediction | None:
+    def _plan(self, reason: str, counted: bool = True, again: bool = False) -> Prediction | None:
         """Perceive, build the problem, plan; log it (a re-plan when ``counted``, else a plan
-        again after a refusal). None when no plan was found."""
+        again after a refusal; ``again``: the same one with another model, logged as a plan
+        only). None when no plan was found."""
         if self.refusals.stuck:
             self._escape()
         start = canonical(self._perceive_for_planning())
@@ -207,9 +217,9 @@ class ClosedLoop:
         index = len(self.log.plans)
         entry = {"time": round(self.world.time, 4), "reason": reason,
                  "latency_wall_s": round(latency, 4)}
-        if index and counted:
+        if index and counted and not again:
             self.log.replans.append(entry)
-        elif index:
+        elif index and not again:
             self.log.refusals.append(entry)
         if self.config.advance_latency:
             self.world.run_until(self.world.time + latency)
