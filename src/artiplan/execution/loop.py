@@ -26,7 +26,7 @@ from artiplan.execution.dispatch import ActionFailed, Rotate, Step, dispatch, pl
 from artiplan.execution.monitor import Monitor, goal_errors
 from artiplan.execution.predict import Prediction
 from artiplan.execution.problem import build_problem, canonical
-from artiplan.execution.refusals import Refusals, describe
+from artiplan.execution.refusals import Refusal, Refusals, describe
 from artiplan.execution.regrasp import Resume, align, resume_after
 from artiplan.execution.runlog import RunLog, conf_dict
 from artiplan.model import Configuration
@@ -107,12 +107,6 @@ class ClosedLoop:
         counted = False
         while True:
             prediction = self._plan(reason, counted)
-            if prediction is None and self._fall_back():
-                # No plan with the gravity model in its time limit (measured: twice 60 s on
-                # a 6-link state): the fallback model's search is smaller; try it before
-                # giving up.
-                prediction = self._plan(f"{reason}; no plan with the gravity model", counted,
-                                        again=True)
             if prediction is None:
                 break
             self.refusals.free = False
@@ -204,10 +198,9 @@ class ClosedLoop:
         conf, _ = self.kb.latest_configuration(None)
         return conf
 
-    def _plan(self, reason: str, counted: bool = True, again: bool = False) -> Prediction | None:
+    def _plan(self, reason: str, counted: bool = True) -> Prediction | None:
         """Perceive, build the problem, plan; log it (a re-plan when ``counted``, else a plan
-        again after a refusal; ``again``: the same one with another model, logged as a plan
-        only). None when no plan was found."""
+        again after a refusal). None when no plan was found."""
         if self.refusals.stuck:
             self._escape()
         start = canonical(self._perceive_for_planning())
@@ -217,9 +210,9 @@ class ClosedLoop:
         index = len(self.log.plans)
         entry = {"time": round(self.world.time, 4), "reason": reason,
                  "latency_wall_s": round(latency, 4)}
-        if index and counted and not again:
+        if index and counted:
             self.log.replans.append(entry)
-        elif index and not again:
+        elif index:
             self.log.refusals.append(entry)
         if self.config.advance_latency:
             self.world.run_until(self.world.time + latency)
@@ -268,28 +261,40 @@ class ClosedLoop:
         """Plan from ``start``; not starting with a rotation the world has refused since the
         chain last moved (it would be refused again from nearly the same state), ignoring
         those refusals if that finds no plan, or only one longer than the run has time left
-        for (measured: a plan around two refusals turned L2 for 695 s, 70 times round)."""
+        for (measured: a plan around two refusals turned L2 for 695 s, 70 times round). A
+        model that finds no plan makes way for the fallback model, from then on, before the
+        refusals are ignored: its search is smaller (measured: around two refusals UCM found
+        none where NG found one; twice 60 s of UCM search on a 6-link state found none)."""
         refused = self.refusals.refused
         left = self.config.max_time - self.world.time
-        first = None
+        first, first_relaxed, result = None, False, None
         for avoid in ((refused, frozenset()) if refused else (frozenset(),)):
-            enc = replace(self.encoding, refusals=True) if avoid else self.encoding
-            domain = domain_pddl(self.obj, enc) if avoid else self.domain
-            problem = build_problem(self.obj, start, self.target, enc, self.goal,
-                                    hands_away=self.lead > 0.0, refused=avoid)
-            result = self.planner.plan(domain, problem, time_limit=self.config.plan_time_limit)
-            if result.status is not PlanStatus.SOLVED or result.plan is None:
+            result = self._solve_with(start, avoid)
+            if not _solved(result) and self._fall_back():
+                result = self._solve_with(start, avoid)
+            if not _solved(result):
                 continue
-            first = first or result
+            if first is None:
+                first, first_relaxed = result, bool(refused) and not avoid
             span = max(result.plan.makespan, result.plan.end or 0.0)
             if span <= left:
                 if avoid:
                     self.progress("planned without starting with " + ", ".join(
                         describe(r) for r in sorted(avoid)) + " (refused from here)")
+                self.refusals.relaxed = bool(refused) and not avoid
                 return result
             self.progress(f"a plan of {span:.0f} s, more than the {left:.0f} s left: "
                           + ("planning again without the refusals" if avoid else "taken"))
+        self.refusals.relaxed = first_relaxed
         return first or result
+
+    def _solve_with(self, start: Configuration, avoid: frozenset[Refusal]) -> Any:
+        """One planner call from ``start`` with the model in use, not starting with ``avoid``."""
+        enc = replace(self.encoding, refusals=True) if avoid else self.encoding
+        domain = domain_pddl(self.obj, enc) if avoid else self.domain
+        problem = build_problem(self.obj, start, self.target, enc, self.goal,
+                                hands_away=self.lead > 0.0, refused=avoid)
+        return self.planner.plan(domain, problem, time_limit=self.config.plan_time_limit)
 
     # -- execution ------------------------------------------------------------------------
     def _execute(self, pred: Prediction) -> str | None:
@@ -471,6 +476,10 @@ def _settings(config: LoopConfig) -> dict[str, Any]:
     d = asdict(config)
     d["interventions"] = [asdict(i) for i in config.interventions]
     return d
+
+
+def _solved(result: Any) -> bool:
+    return bool(result.status is PlanStatus.SOLVED and result.plan is not None)
 
 
 def run_loop(world: World, target: Configuration, config: LoopConfig | None = None,
