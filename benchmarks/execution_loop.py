@@ -94,6 +94,7 @@ def main() -> None:
                    "latency_wall_s": [r["latency_wall_s"] for r in log.replans],
                    "sim_s": round(world.time, 3), "wall_s": round(time.perf_counter() - t0, 3),
                    "max_goal_error": log.final.get("max_goal_error"),
+                   "error": log.final.get("error"),
                    "hands": world.hands.kind, "model": args.model, "preset": args.preset,
                    "approach_s": args.approach, "reach_time": reach,
                    "compensate": not args.no_compensate, "carry": args.carry, "fall": args.fall,

@@ -52,3 +52,24 @@ def test_loop_reaches_a_three_link_goal(model: str) -> None:
     # The goal really holds in the world (ground truth), not only in the percept.
     truth = world.true_configuration()
     assert float(np.max(direction_error(truth, target)[2:3])) <= cfg.accept_deg + 1.0
+
+
+def test_a_diverging_physics_ends_the_run_as_failed() -> None:
+    """MuJoCo resets its whole state when a step diverges (time back to 0, every body at its
+    initial pose): the world raises instead of going on, and the loop ends the run, failed,
+    saying why, rather than planning from a teleported object."""
+    world, target = _world(3, 4)
+    seen: list[float] = []
+    when: list[float] = []
+
+    def blow_up(w, kind, _label):  # type: ignore[no-untyped-def]
+        seen.append(w.time)
+        if kind == "monitor" and w.time > 0.5 and not when:
+            when.append(w.time)
+            w.data.qvel[:] = 1e30  # MuJoCo's check of bad velocities resets the state
+
+    log = run_loop(world, target, LoopConfig(EncodingOptions("ng")), seed=4, observer=blow_up)
+    assert not log.success
+    assert "physics diverged" in log.final["error"]
+    assert log.final["time"] == pytest.approx(when[0])  # not the reset clock
+    assert all(b >= a for a, b in zip(seen, seen[1:], strict=False))  # time never went back

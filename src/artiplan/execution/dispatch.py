@@ -144,7 +144,7 @@ def rotate(
     try:
         world.hold_and_rotate(step.hold, step.turn, step.plane, step.direction, speed,
                               reference=predicted, extent_deg=extent)
-    except (ValueError, RuntimeError, FloatingPointError) as exc:
+    except (ValueError, RuntimeError) as exc:  # not FloatingPointError: the physics diverged
         raise ActionFailed(f"{step.action.signature}: {exc}",
                            bool(getattr(exc, "arms_caught", False))) from exc
     sign = "+" if step.direction > 0 else "-"

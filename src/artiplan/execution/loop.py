@@ -103,17 +103,30 @@ class ClosedLoop:
         t_start = self.world.time
         motions0 = len(getattr(getattr(self.world.hands, "checker", None), "stats", []))
         self.world.run_until(self.world.time + self.config.settle_s)
+        try:
+            self._loop()
+        except FloatingPointError as exc:  # the physics diverged: the run ends, failed
+            self._diverged(str(exc))
+        if not self.log.final:
+            self._final_check()
+        self.world.stop(release=True)
+        self._record_arms(t_start, motions0)
+        self.log.wall_s = round(time.perf_counter() - wall0, 4)
+        return self.log
+
+    def _loop(self) -> None:
+        """Plan, execute and re-plan until the goal is reached or the budget is gone."""
         reason = "initial"
         counted = False
         while True:
             prediction = self._plan(reason, counted)
             if prediction is None:
-                break
+                return
             self.refusals.free = False
             outcome = self._execute(prediction)
             if outcome is None:  # plan finished: check the goal at the final happening
                 if self._final_check() or not self._may_replan():
-                    break
+                    return
                 reason = "goal not reached at the final happening"
                 self._fall_back()
             else:
@@ -130,12 +143,17 @@ class ClosedLoop:
             self.replans += 1
             if self.replans >= self.config.fallback_after:
                 self._fall_back()
-        if not self.log.final:
-            self._final_check()
-        self.world.stop(release=True)
-        self._record_arms(t_start, motions0)
-        self.log.wall_s = round(time.perf_counter() - wall0, 4)
-        return self.log
+
+    def _diverged(self, message: str) -> None:
+        """The simulation diverged: the run fails, with what was last perceived before (the
+        world's own clock may have been reset)."""
+        last = self.log.samples[-1] if self.log.samples else {"time": 0.0,
+                                                               "perceived": self.log.initial}
+        self.log.final = {"time": last["time"], "perceived": last["perceived"],
+                          "goal_errors": {}, "success": False,
+                          "replans": self.replans, "error": message}
+        self.log.success = False
+        self.progress(f"run ended: {message}")
 
     def _record_arms(self, t_start: float, motions0: int) -> None:
         """Copy the arms' collisions and planned motions of this run into the log."""
