@@ -44,6 +44,8 @@ def main() -> None:
                     help="UCM's fall speeds (EncodingOptions.fall)")
     ap.add_argument("--max-replans", type=int, default=None,
                     help="re-plan budget of a run (default: LoopConfig's)")
+    ap.add_argument("--no-monitor-ahead", action="store_true",
+                    help="judge every offset, also those a turn ahead aligns away")
     ap.add_argument("--start", type=int, default=1, help="first task index")
     ap.add_argument("--logs", type=Path, default=None,
                     help="also write each run's full log here as task-K.json (for diagnosis)")
@@ -74,6 +76,8 @@ def main() -> None:
         config = replace(config, plan_tolerance_deg=args.plan_tol)
     if args.fallback_after is not None:
         config = replace(config, fallback_after=args.fallback_after)
+    if args.no_monitor_ahead:
+        config = replace(config, monitor_ahead=False)
     if args.max_replans is not None:
         config = replace(config, max_replans=args.max_replans)
     rows = []
@@ -98,7 +102,7 @@ def main() -> None:
                    "hands": world.hands.kind, "model": args.model, "preset": args.preset,
                    "approach_s": args.approach, "reach_time": reach,
                    "compensate": not args.no_compensate, "carry": args.carry, "fall": args.fall,
-                   "max_replans": config.max_replans}
+                   "max_replans": config.max_replans, "monitor_ahead": config.monitor_ahead}
             rows.append(row)
             if args.logs is not None:
                 args.logs.mkdir(parents=True, exist_ok=True)

@@ -89,3 +89,43 @@ def test_a_fade_predicts_a_link_where_it_was_seen_until_the_turn_catches_up() ->
         assert a.theta == b.theta and a.gamma[:2] == b.gamma[:2]
     pred.fade({2: 1.0}, "xy-axes", 6.0, 7.0)  # the expired fade is dropped
     assert [f.index for f in pred.fades] == [2]
+
+
+def test_an_offset_a_turn_ahead_aligns_is_not_judged() -> None:
+    from artiplan.execution.regrasp import POLE_DEG, aligned_ahead
+
+    predicted = Configuration((10.0, 20.0, 30.0), (90.0, 100.0, 110.0))
+    seen = Configuration((10.0, 31.0, 30.0 + MAX_LOST_DEG + 1.0), (90.0, 92.0, 110.0))
+    ahead = frozenset({(2, "xy-axes"), (2, "z-axis"), (3, "xy-axes")})
+    judged, notes = aligned_ahead(predicted, seen, ahead)
+    # L2's offsets on both planes are within what the turns' alignment takes: as seen.
+    assert judged.angle(2, "xy-axes") == 31.0 and judged.angle(2, "z-axis") == 92.0
+    assert notes == ["L2 xy-axes +11.0", "L2 z-axis -8.0"]
+    # L3's is larger than MAX_LOST_DEG: judged against the plan, as without a turn ahead.
+    assert judged.angle(3, "xy-axes") == 30.0
+    # Without a turn ahead nothing passes.
+    assert aligned_ahead(predicted, seen, frozenset()) == (predicted, [])
+    # Near the vertical an azimuth is not aligned (behind_deg), so it is judged.
+    pole = Configuration((10.0, 20.0, 30.0), (90.0, POLE_DEG / 2, 110.0))
+    near = Configuration((10.0, 31.0, 30.0), (90.0, POLE_DEG / 2, 110.0))
+    assert aligned_ahead(pole, near, ahead)[0].angle(2, "xy-axes") == 20.0
+
+
+def test_a_small_push_on_a_link_the_plan_turns_later_needs_no_re_plan() -> None:
+    """A 10 deg push on L3's vertical angle before the plan's own vertical turn of L3: the
+    turn's alignment takes it, so the loop reaches the goal without re-planning (with every
+    offset judged, the same push re-plans)."""
+    from artiplan.execution import Intervention
+    from artiplan.world import make_world
+
+    obj = ArticulatedObject(3)
+    init, target = random_pair(3, random.Random(11))
+    push = Intervention(0.3, "L3", "z-axis", 10.0)
+    runs = {}
+    for ahead in (True, False):
+        world = make_world(obj, init, hands="virtual", seed=11)
+        cfg = LoopConfig(EncodingOptions("ng"), interventions=(push,), monitor_ahead=ahead)
+        runs[ahead] = run_loop(world, target, cfg, seed=11)
+    assert runs[True].success and not runs[True].replans
+    assert any("aligned_ahead" in s for s in runs[True].samples)
+    assert runs[False].replans and "L3 off the prediction" in runs[False].replans[0]["reason"]

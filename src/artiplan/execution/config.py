@@ -68,6 +68,9 @@ class LoopConfig:
         monitor_tip_links: Also monitor links tip-ward of every goal link. They cannot move a
             goal link in the model, and the model mispredicts carried links, so by default
             their errors are logged but do not trigger re-plans.
+        monitor_ahead: Let pass a link's offset on a plane that a turn still ahead in the plan
+            rotates it on, up to what that turn's alignment takes (``execution.regrasp``:
+            ``aligned_ahead``): execution corrects it, a re-plan is not needed for it.
         compensate_approach: With hands that approach their grasps in simulated time and a
             ``reach_time`` in the encoding: plans start with the hands away (the first grasp
             waits ``reach_time`` too), each start is dispatched ``reach_time`` early, and the
@@ -95,6 +98,7 @@ class LoopConfig:
     use_ontology: bool = True
     monitor_tip_links: bool = False
     compensate_approach: bool = True
+    monitor_ahead: bool = True
 
     def __post_init__(self) -> None:
         if self.threshold_deg <= 0 or self.accept_deg <= 0 or self.plan_tolerance_deg <= 0:

@@ -27,7 +27,7 @@ from artiplan.execution.monitor import Monitor, goal_errors
 from artiplan.execution.predict import Prediction
 from artiplan.execution.problem import build_problem, canonical
 from artiplan.execution.refusals import Refusal, Refusals, describe
-from artiplan.execution.regrasp import Resume, align, resume_after
+from artiplan.execution.regrasp import Resume, align, aligned_ahead, resume_after
 from artiplan.execution.runlog import RunLog, conf_dict
 from artiplan.model import Configuration
 from artiplan.semantics import Plan
@@ -87,6 +87,8 @@ class ClosedLoop:
         self.carried: frozenset[str] = frozenset()
         #: The rotation in progress when the arms stop it short (execution.regrasp).
         self.resume: Resume | None = None
+        #: (link index, plane) of the turns still ahead in the plan being executed.
+        self._ahead: frozenset[tuple[int, str]] = frozenset()
         self.log = RunLog(
             settings={**_settings(config), "hands": world.hands.kind,
                       "physics": asdict(world.config.physics)},
@@ -339,6 +341,7 @@ class ClosedLoop:
                 self._intervene(self.pending.pop(0), index)
                 next_mon = now  # look again at once
                 continue
+            self._ahead = self._turns_ahead(actions[i:])
             if t_res <= now + tol and (i >= len(actions) or t_act > now + tol):
                 reason = self._observe(pred, index, "happening")
                 if reason is not None and self._may_replan():
@@ -371,16 +374,31 @@ class ClosedLoop:
         now = self.world.time
         predicted = pred.at(now)
         percept = self.world.perceive(reference=predicted)
-        verdict = self.monitor.check(predicted, percept.configuration, self.carried)
-        self.log.samples.append({
+        judged, passed = aligned_ahead(predicted, percept.configuration, self._ahead)
+        verdict = self.monitor.check(judged, percept.configuration, self.carried)
+        sample = {
             "time": round(now, 4), "plan": index, "kind": kind, "predicted": conf_dict(predicted),
             "perceived": conf_dict(percept.configuration),
-            "errors": [round(e, 3) for e in verdict.errors]})
+            "errors": [round(e, 3) for e in verdict.errors]}
+        if passed:  # offsets a turn ahead aligns away: not judged (errors without them)
+            sample["aligned_ahead"] = passed
+        self.log.samples.append(sample)
         self.observer(self.world, "monitor", kind)
         if not verdict.fired:
             return None
         return (f"{verdict.worst_link} off the prediction by {verdict.worst_error:.1f} deg "
                 f"(threshold {verdict.threshold:g})")
+
+    def _turns_ahead(self, steps: list[Step]) -> frozenset[tuple[int, str]]:
+        """(1-based link index, plane) of the turns still to start (dispatches and a pending
+        re-grasp), each aligned on its link when it starts (:func:`aligned_ahead`); none
+        when ``LoopConfig.monitor_ahead`` is off."""
+        if not self.config.monitor_ahead:
+            return frozenset()
+        turns = [s for s in steps if isinstance(s, Rotate)]
+        if self.resume is not None:
+            turns.append(self.resume.step)
+        return frozenset((self.obj.index(s.turn), s.plane) for s in turns)
 
     def _due(self, step: Step, pred: Prediction) -> float:
         """World time [s] to dispatch ``step``: a rotation ``lead`` early (its reach)."""

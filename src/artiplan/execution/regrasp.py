@@ -96,6 +96,33 @@ def behind_deg(step: Rotate, predicted: Configuration, perceived: Configuration,
     return min(max(behind, -MAX_LOST_DEG), MAX_LOST_DEG)
 
 
+def aligned_ahead(predicted: Configuration, perceived: Configuration,
+                  ahead: frozenset[tuple[int, str]]) -> tuple[Configuration, list[str]]:
+    """The prediction as the monitor judges it, and what it lets pass: for each (1-based link
+    index, plane) that a turn still ahead in the plan rotates, the link's angle on that plane
+    as perceived, when it is off the prediction by at most MAX_LOST_DEG. That turn is aligned
+    on the link when it starts (:func:`align`: the plan's clock shifts so the turn ends where
+    the plan says), so the offset does not reach the goal, and re-planning for it would spend
+    a re-plan on what execution corrects anyway (the triangle-table idea: monitor only what
+    the rest of the plan needs). Not about the vertical within POLE_DEG of it, where
+    :func:`behind_deg` does not align."""
+    theta, gamma = list(predicted.theta), list(predicted.gamma)
+    notes = []
+    for index, plane in sorted(ahead):
+        if plane == HORIZONTAL_PLANE:
+            g = perceived.angle(index, VERTICAL_PLANE)
+            if abs(math.sin(math.radians(g))) < math.sin(math.radians(POLE_DEG)):
+                continue
+        seen = perceived.angle(index, plane)
+        off = signed_delta_deg(predicted.angle(index, plane), seen)
+        if abs(off) > MAX_LOST_DEG:
+            continue
+        (theta if plane == HORIZONTAL_PLANE else gamma)[index - 1] = seen
+        if abs(off) >= 0.05:
+            notes.append(f"L{index} {plane} {off:+.1f}")
+    return Configuration(tuple(theta), tuple(gamma)), notes
+
+
 def align(world: World, step: Rotate, pred: Prediction, speed: float) -> float:
     """Shift the plan's clock (``pred.t0``) so the turn ``step`` starting now at ``speed``
     [deg/s] ends where the plan says on its plane; returns how far [deg] the link was behind

@@ -48,6 +48,7 @@ _SAMPLE = {
         "predicted": _CONF,
         "perceived": _CONF,
         "errors": {"type": "array", "items": _NUM},
+        "aligned_ahead": {"type": "array", "items": {"type": "string"}},
     },
 }
 _REPLAN = {
