@@ -84,3 +84,27 @@ def test_the_second_view_is_what_a_full_compile_gives(tmp_path: Path, first_stri
         # the first view is unchanged by the second (its operators are not the copies)
         assert all(a is not b for a, b in zip(first.actions, second.actions, strict=True))
         assert first.strict is first_strict
+
+
+def test_a_full_memo_drops_its_least_recently_used_half(tmp_path: Path) -> None:
+    """When the per-task memo is full it drops dead tasks' entries, then the least recently
+    used half, not everything: a full clear dropped the planner's view of a task just before
+    the validator's view came to re-read it (a test here failed or passed by how many entries
+    the tests before it had left)."""
+    task = _suite_tasks(tmp_path)[0]
+    cache._MEMO.clear()
+    built: list[int] = []
+
+    def filler(i: int) -> int:
+        return cache.per_task(task, ("filler", i), lambda: built.append(i) or i)
+
+    for i in range(cache._MAX_ENTRIES):
+        filler(i)
+    filler(0)  # used again: the most recent now
+    filler(cache._MAX_ENTRIES)  # one more: the memo is full
+    built.clear()
+    for i in (0, cache._MAX_ENTRIES - 1, cache._MAX_ENTRIES):
+        filler(i)
+    assert built == []  # kept: used last, or among the newest
+    filler(1)
+    assert built == [1]  # among the least recently used half: dropped

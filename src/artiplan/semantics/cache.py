@@ -23,9 +23,17 @@ def per_task(task: Task, key: Any, build: Callable[[], T]) -> T:
     k = (id(task), key)
     hit = _MEMO.get(k)
     if hit is not None and hit[0]() is task:
+        _MEMO[k] = _MEMO.pop(k)  # most recently used last
         return hit[1]
     if len(_MEMO) >= _MAX_ENTRIES:
-        _MEMO.clear()
+        # Dead tasks' entries first, then the least recently used half: a full clear dropped
+        # the entry a second view of the same task was about to re-read (a test failed or
+        # passed by how many entries the tests before it had left).
+        for stale in [k2 for k2, (ref, _) in _MEMO.items() if ref() is None]:
+            del _MEMO[stale]
+        if len(_MEMO) >= _MAX_ENTRIES:
+            for old in list(_MEMO)[: _MAX_ENTRIES // 2]:
+                del _MEMO[old]
     value = build()
     _MEMO[k] = (weakref.ref(task), value)
     return value
@@ -33,5 +41,9 @@ def per_task(task: Task, key: Any, build: Callable[[], T]) -> T:
 
 def cached(task: Task, key: Any) -> Any | None:
     """What :func:`per_task` holds for (task, key), or None; builds nothing."""
-    hit = _MEMO.get((id(task), key))
-    return hit[1] if hit is not None and hit[0]() is task else None
+    k = (id(task), key)
+    hit = _MEMO.get(k)
+    if hit is None or hit[0]() is not task:
+        return None
+    _MEMO[k] = _MEMO.pop(k)
+    return hit[1]
