@@ -256,3 +256,94 @@ def test_no_plan_with_the_gravity_model_tries_the_fallback_model_before_giving_u
     assert models[:2] == ["ucm", "ng"]  # one plan: the fallback model's, from then on
     assert log.plans[0]["status"] == "solved" and log.plans[0]["model"] == "ng"
     assert not log.replans and not log.refusals and log.success
+
+
+def test_turns_between_separate_a_link_from_what_its_grasps_met() -> None:
+    from artiplan.encoding.problem import turns_between
+
+    assert list(turns_between(4, frozenset({1}))) == [2, 3, 4]  # the scene: L4 itself moves
+    assert list(turns_between(3, frozenset({5}))) == [4, 5]  # L5 folded back beside L3
+    assert list(turns_between(4, frozenset({2, 5}))) == [3, 4, 5]
+    assert list(turns_between(2, frozenset({1}))) == [2]
+
+
+def _plan(obj: ArticulatedObject, task: Any, enc: EncodingOptions,
+          **around: Any) -> list[tuple[float, str]]:
+    from artiplan.backends import get_planner
+    from artiplan.encoding import domain_pddl
+
+    goal = make_goal(obj, task.target, "window", 1, planes=enc.planes, tolerance=1.5)
+    problem = build_problem(obj, task.initial, task.target, enc, goal, hands_away=True,
+                            **around)
+    result = get_planner("artiplan").plan(domain_pddl(obj, enc), problem, time_limit=60)
+    assert result.plan is not None
+    return [(a.time, a.signature) for a in result.plan.actions]
+
+
+def test_an_ungraspable_link_is_grasped_only_after_a_turn_that_moves_it() -> None:
+    """L3 could not be turned (its grasps met the scene): the plan first turns L2 by
+    CLEAR_DEG or more (which moves L3), and only then grasps L3 to turn it."""
+    from artiplan.encoding.domain import CLEAR_DEG
+
+    obj = ArticulatedObject(4)
+    task = make_task(4, 1, seed=7)
+    enc = EncodingOptions("ucm", speed_g=0.948, reach_time=3.178, refusals=True)
+    free = _plan(obj, task, enc)
+    assert any(" L2 L3 " in s for _, s in free)  # without the refusal, L3 is turned
+    plan = _plan(obj, task, enc, ungraspable=frozenset({("L3", "turn", frozenset({1}))}))
+    first = next(k for k, (_, s) in enumerate(plan) if s.startswith("(start") and " L2 L3 " in s)
+    before = plan[:first]
+    starts = [(t, s) for t, s in before if s.startswith("(start-")]
+    assert starts and all(" L1 L2 " in s for _, s in starts)  # only L2 turns (it moves L3)
+    stop = next(t for t, s in before if s.startswith("(stop-"))
+    assert (stop - starts[0][0]) * enc.speed_i >= CLEAR_DEG - 1e-6
+
+
+def test_a_tiny_turn_does_not_unlock_a_refusal(tmp_path: Any) -> None:
+    """The start (L2 L3 xy-axes, increase) refused: a turn of L2 (which moves the pair)
+    unlocks it only once it has gone CLEAR_DEG. Measured before: plans unlocked refusals with
+    1 ms turns that moved nothing, and the robot refused the same grasps again."""
+    from artiplan.encoding import domain_pddl
+    from artiplan.encoding.domain import CLEAR_DEG
+    from artiplan.pddl import load_task
+    from artiplan.semantics import validate
+    from artiplan.semantics.plan_io import parse_plan
+
+    obj = ArticulatedObject(4)
+    task = make_task(4, 1, seed=7)
+    enc = EncodingOptions("ng", reach_time=1.0, refusals=True)
+    goal = make_goal(obj, task.target, "window", 1, planes=enc.planes, tolerance=1.5)
+    (tmp_path / "d.pddl").write_text(domain_pddl(obj, enc))
+    (tmp_path / "p.pddl").write_text(build_problem(
+        obj, task.initial, task.target, enc, goal, hands_away=True,
+        refused=frozenset({("L2", "L3", "xy-axes", "increase")})))
+    pddl = load_task(tmp_path / "d.pddl", tmp_path / "p.pddl")
+    turn = CLEAR_DEG / enc.speed_i  # [s]
+    for length, unlocked in ((0.01, False), (0.9 * turn, False), (1.01 * turn, True)):
+        plan = parse_plan(f"1.01: (start-increase L1 L2 z-axis)\n"
+                          f"{1.01 + length:.6f}: (stop-increase L1 L2 z-axis)\n"
+                          f"{2.02 + length:.6f}: (start-increase L2 L3 xy-axes)\n")
+        report = validate(pddl, plan)
+        refused_at_start = report.kind == "precondition" and report.happening is not None \
+            and report.time == pytest.approx(2.02 + length, abs=1e-3)
+        assert refused_at_start != unlocked, (length, report.summary())
+
+
+def test_refusals_forget_an_ungraspable_link_once_a_turn_separates_it() -> None:
+    from artiplan.execution.dispatch import Rotate
+    from artiplan.execution.refusals import Refusals
+    from artiplan.semantics import TimedAction
+
+    obj = ArticulatedObject(6)
+
+    def rot(hold: str, turn: str) -> Rotate:
+        return Rotate(TimedAction(1.0, "start-increase", (hold, turn, "z-axis")), hold, turn,
+                      "z-axis", 1, 5.0)
+
+    r = Refusals()
+    r.refuse(rot("L2", "L3"), in_time=True, blocked=(("L3", "turn", frozenset({5})),))
+    assert r.ungraspable == {("L3", "turn", frozenset({5}))}
+    r.turned(rot("L1", "L2"), obj)  # moves L3 and L5 together: still blocked
+    assert r.ungraspable
+    r.turned(rot("L4", "L5"), obj)  # L5 turns away from L3
+    assert not r.ungraspable

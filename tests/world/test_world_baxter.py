@@ -225,3 +225,22 @@ def test_baxter_approach_goes_through_the_pre_grasp_pose_and_stays_clear() -> No
     # are planned and the physics has arm contacts on: nothing is touched.
     assert worst[hold] > 0.0 and worst[rot] > 0.0, worst
     assert not hands.contacts.events, [e.to_dict() for e in hands.contacts.events]
+
+
+def test_baxter_says_which_link_no_hand_can_grasp() -> None:
+    """A 6-link chain folded so that L4 lies between L2 and L5 (perceived in a seeded 6-link
+    run, task 2 at 30.2 s): every grasp of L4 by either hand meets another link or the scene
+    at the grasp or on its final leg. The refusal names L4 in its role and what its grasps
+    met, so the loop plans no other turn of L4 before L4 has moved against them."""
+    from artiplan.world.pairs import NotExecutableError
+
+    conf = Configuration((268.59, 207.12, 351.83, 71.93, 219.86, 221.24),
+                         (16.17, 33.53, 135.14, 140.66, 57.26, 56.96))
+    world = make_world(ArticulatedObject(6), conf, hands="baxter", approach_s=1.0)
+    with pytest.raises(NotExecutableError) as err:
+        world.hold_and_rotate("L3", "L4", "xy-axes", 1, 10.0, extent_deg=40.0)
+    blocked = {(link, role): met for link, role, met in err.value.blocked}
+    assert ("L4", "turn") in blocked
+    assert 5 in blocked[("L4", "turn")]  # L5, folded back beside it, among what was met
+    assert ("L3", "hold") not in blocked  # L3 itself can be held
+    assert world.hands.held("left") is None and world.hands.held("right") is None

@@ -12,14 +12,41 @@ from artiplan.encoding.options import EncodingOptions
 from artiplan.model import ArticulatedObject, Configuration
 from artiplan.model.angles import wrap_deg
 
+#: A link the robot could not grasp: (link, ``hold`` or ``turn``, 1-based indices of what its
+#: grasps met; 1 for the fixed scene and the clamped L1).
+Ungraspable = tuple[str, str, frozenset[int]]
+
+
+def turns_between(index: int, met: frozenset[int]) -> range:
+    """1-based indices of the links whose turn moves link ``index`` relative to every link in
+    ``met`` (1: the fixed scene) or some of them: the turn of link j moves links j.. against
+    links ..j-1, so it separates links a < b when a < j <= b."""
+    lo, hi = min(met | {index}), max(met | {index})
+    return range(max(lo + 1, 2), hi + 1)
+
+
+def _refusal_facts(obj: ArticulatedObject, refused: frozenset[tuple[str, str, str, str]],
+                   ungraspable: frozenset[Ungraspable]) -> list[str]:
+    facts = [f"(refused-{sign} {a} {b} {p})" for a, b, p, sign in sorted(refused)]
+    clears: set[tuple[int, int]] = set()
+    for link, role, met in sorted(ungraspable, key=lambda u: (u[0], u[1], sorted(u[2]))):
+        facts.append(f"(blocked-{role} {link})")
+        x = obj.index(link)
+        clears |= {(j, x) for j in turns_between(x, met)}
+    facts += [f"(clears {obj.links[j - 1]} {obj.links[x - 1]})" for j, x in sorted(clears)]
+    return facts
+
 
 def _init_facts(obj: ArticulatedObject, init: Configuration, options: EncodingOptions,
                 reaching: bool = False,
                 blocked: frozenset[tuple[str, str]] = frozenset(),
-                refused: frozenset[tuple[str, str, str, str]] = frozenset()) -> list[str]:
+                refused: frozenset[tuple[str, str, str, str]] = frozenset(),
+                ungraspable: frozenset[Ungraspable] = frozenset()) -> list[str]:
     facts = ["(reaching)"] if reaching and options.has_reach else []
     facts += [f"(connected {a} {b})" for a, b in obj.joints if (a, b) not in blocked]
-    facts += [f"(refused-{sign} {a} {b} {p})" for a, b, p, sign in sorted(refused)]
+    facts += _refusal_facts(obj, refused, ungraspable)
+    if options.refusals:
+        facts.append("(= (turned) 0)")
     facts += [f"(affects {a} {b})" for a, b in obj.affects()]
     facts += [f"(free-to-move {lk})" for lk in obj.links]
     facts += [
@@ -117,6 +144,7 @@ def problem_pddl(
     reaching: bool = False,
     blocked: frozenset[tuple[str, str]] = frozenset(),
     refused: frozenset[tuple[str, str, str, str]] = frozenset(),
+    ungraspable: frozenset[Ungraspable] = frozenset(),
 ) -> str:
     """The PDDL+ problem text that takes ``obj`` from ``init`` to ``target``.
 
@@ -137,6 +165,9 @@ def problem_pddl(
         refused: (hold link, rotated link, plane, ``increase``/``decrease``) rotations the
             robot has just refused to start: the plan does not start them before some
             rotation has stopped (needs ``options.refusals``).
+        ungraspable: Links the robot could not grasp in a role (:data:`Ungraspable`): no
+            start grasps them that way before a turn of :func:`turns_between` has stopped
+            (needs ``options.refusals``).
 
     Returns:
         The problem as PDDL+ text, ending with a newline.
@@ -145,13 +176,16 @@ def problem_pddl(
         raise ValueError(f"object has {obj.n_links} links, initial configuration {init.n_links}")
     if goal is None:
         goal = make_goal(obj, target, goal_style, seed, planes=options.planes)
-    if refused and not options.refusals:
+    if (refused or ungraspable) and not options.refusals:
         raise ValueError("refused rotations need EncodingOptions(refusals=True)")
+    if any(u[1] not in ("hold", "turn") for u in ungraspable):
+        raise ValueError("an ungraspable link's role is hold or turn")
     bad = [r for r in refused if r[3] not in ("increase", "decrease")]
     if bad:
         raise ValueError(f"a refused rotation's sign is increase or decrease, not {bad[0][3]!r}")
     name = name or f"p{obj.n_links}"
-    facts = "\n    ".join(_init_facts(obj, init, options, reaching, blocked, refused))
+    facts = "\n    ".join(_init_facts(obj, init, options, reaching, blocked, refused,
+                                       ungraspable))
     return f"""(define (problem {name})
   (:domain {domain_name(options)})
   (:objects {" ".join(obj.links)} - link)

@@ -25,11 +25,15 @@ class ActionFailed(RuntimeError):
     Attributes:
         arms_caught: The grasps were fine but no arm motion to them was found from where the
             arms are (:class:`artiplan.world.pairs.NoArmMotionError`): from home it may work.
+        blocked: Links no hand can grasp now in their role, and the indices of what their
+            grasps met (:attr:`artiplan.world.pairs.NotExecutableError.blocked`).
     """
 
-    def __init__(self, message: str, arms_caught: bool = False) -> None:
+    def __init__(self, message: str, arms_caught: bool = False,
+                 blocked: tuple[tuple[str, str, frozenset[int]], ...] = ()) -> None:
         super().__init__(message)
         self.arms_caught = arms_caught
+        self.blocked = blocked
 
 
 @dataclass(frozen=True)
@@ -146,7 +150,8 @@ def rotate(
                               reference=predicted, extent_deg=extent)
     except (ValueError, RuntimeError) as exc:  # not FloatingPointError: the physics diverged
         raise ActionFailed(f"{step.action.signature}: {exc}",
-                           bool(getattr(exc, "arms_caught", False))) from exc
+                           bool(getattr(exc, "arms_caught", False)),
+                           tuple(getattr(exc, "blocked", ()))) from exc
     sign = "+" if step.direction > 0 else "-"
     limit = getattr(world, "turn_limit", None)
     note = (f" (stops after {limit[0]:.0f} of {extent:.0f} deg: {limit[1]})"

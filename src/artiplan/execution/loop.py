@@ -20,9 +20,19 @@ from typing import TYPE_CHECKING, Any, cast
 
 from artiplan.backends import get_planner
 from artiplan.encoding import domain_pddl, make_goal
+from artiplan.encoding.domain import CLEAR_DEG
 from artiplan.encoding.options import Model
+from artiplan.encoding.problem import Ungraspable
 from artiplan.execution.config import Intervention, LoopConfig
-from artiplan.execution.dispatch import ActionFailed, Rotate, Step, dispatch, plan_steps, rotate
+from artiplan.execution.dispatch import (
+    ActionFailed,
+    Rotate,
+    Step,
+    Stop,
+    dispatch,
+    plan_steps,
+    rotate,
+)
 from artiplan.execution.monitor import Monitor, goal_errors
 from artiplan.execution.predict import Prediction
 from artiplan.execution.problem import build_problem, canonical
@@ -38,6 +48,8 @@ if TYPE_CHECKING:
     from artiplan.world import World
 
 Progress = Callable[[str], None]
+#: What a plan is made around: refused rotations, ungraspable links (execution.refusals).
+Avoid = tuple[frozenset[Refusal], frozenset[Ungraspable]]
 #: Wall time [s] after which a long execution prints a line even when nothing happened.
 HEARTBEAT_S = 10.0
 #: Called with (world, kind, label) after every percept (kind ``monitor``), action (``action``,
@@ -89,6 +101,8 @@ class ClosedLoop:
         self.resume: Resume | None = None
         #: (link index, plane) of the turns still ahead in the plan being executed.
         self._ahead: frozenset[tuple[int, str]] = frozenset()
+        #: The turn in progress: its step, the world time it started [s], speed [deg/s].
+        self._turn: tuple[Rotate, float, float] | None = None
         self.log = RunLog(
             settings={**_settings(config), "hands": world.hands.kind,
                       "physics": asdict(world.config.physics)},
@@ -133,6 +147,7 @@ class ClosedLoop:
                 self._fall_back()
             else:
                 reason = outcome
+            self._turn_close()
             self.world.stop(release=True)
             self.carried = frozenset()
             # A rotation the world refused: planning again without it is part of planning
@@ -145,6 +160,21 @@ class ClosedLoop:
             self.replans += 1
             if self.replans >= self.config.fallback_after:
                 self._fall_back()
+
+    def _turn_close(self) -> None:
+        """The turn in progress (if any) ends now: the refusals it unlocks are unlocked when
+        its command went CLEAR_DEG or more (to where the arms stopped it short, if they did),
+        as the plans' ``turned-enough`` rule has it."""
+        if self._turn is None:
+            return
+        step, t0, speed = self._turn
+        self._turn = None
+        end = self.world.time
+        stops = getattr(self.world, "turn_ends", None)
+        if stops is not None:
+            end = min(end, float(stops))
+        if speed * (end - t0) >= CLEAR_DEG - _EPS:
+            self.refusals.turned(step, self.obj)
 
     def _diverged(self, message: str) -> None:
         """The simulation diverged: the run fails, with what was last perceived before (the
@@ -285,35 +315,42 @@ class ClosedLoop:
         model that finds no plan makes way for the fallback model, from then on, before the
         refusals are ignored: its search is smaller (measured: around two refusals UCM found
         none where NG found one; twice 60 s of UCM search on a 6-link state found none)."""
-        refused = self.refusals.refused
+        every = (self.refusals.refused, self.refusals.ungraspable)
+        none: Avoid = (frozenset(), frozenset())
+        refused = every != none
         left = self.config.max_time - self.world.time
         first, first_relaxed, result = None, False, None
-        for avoid in ((refused, frozenset()) if refused else (frozenset(),)):
+        for avoid in ((every, none) if refused else (none,)):
             result = self._solve_with(start, avoid)
             if not _solved(result) and self._fall_back():
                 result = self._solve_with(start, avoid)
             if not _solved(result):
                 continue
             if first is None:
-                first, first_relaxed = result, bool(refused) and not avoid
+                first, first_relaxed = result, refused and avoid == none
             span = max(result.plan.makespan, result.plan.end or 0.0)
             if span <= left:
-                if avoid:
-                    self.progress("planned without starting with " + ", ".join(
-                        describe(r) for r in sorted(avoid)) + " (refused from here)")
-                self.refusals.relaxed = bool(refused) and not avoid
+                if avoid != none:
+                    self.progress("planned without " + ", ".join(
+                        [f"starting with {describe(r)}" for r in sorted(avoid[0])]
+                        + [f"grasping {u[0]} to {u[1]} it" for u in sorted(
+                            avoid[1], key=lambda u: (u[0], u[1]))]) + " (refused from here)")
+                self.refusals.relaxed = refused and avoid == none
                 return result
             self.progress(f"a plan of {span:.0f} s, more than the {left:.0f} s left: "
                           + ("planning again without the refusals" if avoid else "taken"))
         self.refusals.relaxed = first_relaxed
         return first or result
 
-    def _solve_with(self, start: Configuration, avoid: frozenset[Refusal]) -> Any:
-        """One planner call from ``start`` with the model in use, not starting with ``avoid``."""
-        enc = replace(self.encoding, refusals=True) if avoid else self.encoding
-        domain = domain_pddl(self.obj, enc) if avoid else self.domain
+    def _solve_with(self, start: Configuration, avoid: Avoid) -> Any:
+        """One planner call from ``start`` with the model in use, not starting the refused
+        rotations ``avoid[0]`` nor grasping the links ``avoid[1]`` (before they have moved)."""
+        planned_around = bool(avoid[0] or avoid[1])
+        enc = replace(self.encoding, refusals=True) if planned_around else self.encoding
+        domain = domain_pddl(self.obj, enc) if planned_around else self.domain
         problem = build_problem(self.obj, start, self.target, enc, self.goal,
-                                hands_away=self.lead > 0.0, refused=avoid)
+                                hands_away=self.lead > 0.0, refused=avoid[0],
+                                ungraspable=avoid[1])
         return self.planner.plan(domain, problem, time_limit=self.config.plan_time_limit)
 
     # -- execution ------------------------------------------------------------------------
@@ -410,6 +447,8 @@ class ClosedLoop:
         now = self.world.time
         action = step.action
         planned = pred.t0 + action.time
+        if isinstance(step, (Rotate, Stop)):
+            self._turn_close()
         try:
             did, ok = dispatch(self.world, step, (enc.speed_i, enc.speed_d),
                                pred.at(max(now, planned))), True
@@ -417,15 +456,14 @@ class ClosedLoop:
             did, ok = str(exc), False
             if isinstance(step, Rotate):  # planned around at the next re-plan
                 self.refusals.refuse(step, self.world.time < self.config.max_time,
-                                     exc.arms_caught)
-        if ok and isinstance(step, Rotate):
-            self.refusals.turned(step, self.obj)
+                                     exc.arms_caught, exc.blocked)
         if ok and self.world.time > now:  # the arms approached: the rotation starts now
             shift = self.world.time - planned
             did += f" (reach {self.world.time - now:.2f} s, {shift:+.2f} s off the plan)"
             pred.t0 += shift
         if ok and isinstance(step, Rotate):
             did += f" ({self._align(step, pred, self._speed(step)):+.1f} deg behind at the grasp)"
+            self._turn = (step, self.world.time, self._speed(step))
         self.carried = _carried(self.obj.links, step) if ok else frozenset()
         if isinstance(step, Rotate) or not ok:  # a new turn, a stop or a failure
             self.resume = None
@@ -455,16 +493,18 @@ class ClosedLoop:
         remaining = r.remaining(pred.t0, now)
         step = r.step
         label = f"{step.action.signature} resumed"
+        self._turn_close()
         try:
             did, ok = rotate(self.world, step, r.speed, pred.at(now), remaining), True
         except ActionFailed as exc:
             did, ok = str(exc), False
             self.refusals.refuse(step, self.world.time < self.config.max_time,
-                                     exc.arms_caught)
+                                 exc.arms_caught, exc.blocked)
         if ok:
             waited = self.world.time - now
             pred.t0 += waited
             lost = self._align(step, pred, r.speed)
+            self._turn = (step, self.world.time, r.speed)
             did = (f"re-grasp for the last {remaining:.0f} deg: {did} ({waited:.2f} s, "
                    f"{lost:+.1f} deg behind after it)")
             self.resume = resume_after(self.world, step, r.speed, pred.t0, r.done + 1)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 from artiplan.encoding import EncodingOptions, GoalSpec, problem_pddl
+from artiplan.encoding.problem import Ungraspable
 from artiplan.model import ArticulatedObject, Configuration
 from artiplan.model.angles import wrap_deg
 
@@ -29,6 +30,7 @@ def build_problem(
     options: EncodingOptions, goal: GoalSpec, hands_away: bool = False,
     blocked: frozenset[tuple[str, str]] = frozenset(),
     refused: frozenset[tuple[str, str, str, str]] = frozenset(),
+    ungraspable: frozenset[Ungraspable] = frozenset(),
 ) -> str:
     """The PDDL+ problem from the perceived configuration (canonical covers) to ``goal``.
 
@@ -36,7 +38,10 @@ def build_problem(
     so the first grasp also waits ``reach-time`` (gravity acts meanwhile), as after a release
     inside the plan. ``blocked``: (hold link, rotated link) pairs the robot just failed to
     grasp, planned around (see :func:`artiplan.encoding.problem_pddl`); ``refused``:
-    rotations the robot has just refused, not started before the chain has moved.
+    rotations the robot has just refused, not started before the chain has moved;
+    ``ungraspable``: links it could not grasp, not grasped so before they have moved relative
+    to what their grasps met.
     """
     return problem_pddl(obj, canonical(perceived), target, options, goal=goal, name="replan",
-                        reaching=hands_away, blocked=blocked, refused=refused)
+                        reaching=hands_away, blocked=blocked, refused=refused,
+                        ungraspable=ungraspable)

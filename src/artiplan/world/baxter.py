@@ -109,6 +109,7 @@ class BaxterHands(ApproachMotion, Hands):
         self._planned: dict[str, tuple[str, int]] = {}
         self._plan: dict[str, tuple[Candidate, float]] = {}
         self._cand_cache: dict[tuple[object, ...], list[Candidate]] = {}
+        self._static = {}
         self._roles = ("", "")
         self._clamped = obj.links[0]
         self.geoms: dict[str, ArmGeoms] = {

@@ -100,6 +100,8 @@ class Candidate:
         solo: '' when the candidate is collision-free on its own (final leg, grasp, turn;
             the other arm aside), else why not; None until checked (for ``turn_of``).
         safe: How far [deg] its turn is collision-free on its own (-1: not even the grasp).
+        hit: With ``safe`` -1, the geom the arm met at the grasp or on its final leg (-1:
+            none).
     """
 
     hand: str
@@ -116,6 +118,7 @@ class Candidate:
     solo: str | None = None
     safe: float = float("inf")
     turn_of: object = None
+    hit: int = -1
 
     @property
     def reachable(self) -> bool:

@@ -178,15 +178,21 @@ class ArmChecker:
             out.append((a, b, dd) if o1 >= 0 else (b, a, dd))
         return out
 
+    def nearest(self, q: dict[str, Vec], query: Query) -> tuple[float, int, int]:
+        """Smallest clearance [m] of the query's arms at ``q`` (:data:`MARGIN_M` when nothing
+        is nearer), the arm's geom and the other geom of that pair (-1, -1 when none)."""
+        self.set_arms(q)
+        best, arm, other = MARGIN_M, -1, -1
+        for a, b, dist in self.contacts(query):
+            if dist < best:
+                best, arm, other = dist, a, b
+        return best, arm, other
+
     def clearance(self, q: dict[str, Vec], query: Query) -> tuple[float, str]:
         """Smallest clearance [m] of the query's arms at ``q`` (:data:`MARGIN_M` when nothing
         is nearer) and the closest pair's geom names."""
-        self.set_arms(q)
-        best, pair = MARGIN_M, ""
-        for a, b, dist in self.contacts(query):
-            if dist < best:
-                best, pair = dist, f"{self.model.geom(a).name}~{self.model.geom(b).name}"
-        return best, pair
+        best, a, b = self.nearest(q, query)
+        return best, (f"{self.model.geom(a).name}~{self.model.geom(b).name}" if a >= 0 else "")
 
     def valid(self, q: dict[str, Vec], query: Query, flat: Vec | None = None) -> bool:
         """Whether ``q`` keeps the query's clearance (``flat``: q stacked, for ramps)."""

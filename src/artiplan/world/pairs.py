@@ -64,9 +64,26 @@ MIN_TURN_DEG = 5.0
 ROOM_MIN = 0.1
 
 
+#: A link no hand can grasp now in a role: (link, ``hold`` or ``turn``, the 1-based indices
+#: of what its grasps met: object links, 1 for the fixed scene and the clamped L1).
+Blocked = tuple[str, str, frozenset[int]]
+
+
 class NotExecutableError(RuntimeError):
     """No grasp pair lets the arms do the action without a collision (or no collision-free
-    motion to it was found)."""
+    motion to it was found).
+
+    Attributes:
+        blocked: The action's links that no hand can grasp now in their role, whatever the
+            turn (every reachable grasp of both hands meets something at the grasp or on its
+            final leg), with what they meet: no other action grasping them that way can be
+            done before one of them has moved relative to the other (read by the execution
+            loop, which does not import the world).
+    """
+
+    def __init__(self, message: str, blocked: tuple[Blocked, ...] = ()) -> None:
+        super().__init__(message)
+        self.blocked = blocked
 
 
 class NoArmMotionError(NotExecutableError):
@@ -96,6 +113,12 @@ class PairChoice(GraspChoice):
     turn_limit: tuple[float, str] | None = None
     _target_q: dict[str, Vec]
     _held: dict[str, str | None]
+    _link_index: dict[str, int]
+    #: The other geom of the last failed check (:meth:`_why`).
+    _hit: int = -1
+    #: Per (hand, link) of the current :meth:`assign`: None when some grasp passed its own
+    #: grasp and final-leg checks, else the indices of what they met (:data:`Blocked`).
+    _static: dict[tuple[str, str], frozenset[int] | None]
 
     # -- what the arms do: turned poses and the final leg ----------------------------------
     def _turn_path(self, c: Candidate, turn: Turn) -> None:
@@ -245,12 +268,22 @@ class PairChoice(GraspChoice):
             return f"the {rot.hand} arm follows the turn only {safe:.0f} deg", safe
         return "", turn.degrees
 
-    @staticmethod
-    def _why(chk: ArmChecker, q: dict[str, Vec], query: Query) -> str:
+    def _why(self, chk: ArmChecker, q: dict[str, Vec], query: Query) -> str:
+        """'' when ``q`` keeps the query's clearance, else the nearest pair and its clearance
+        (the other geom kept in ``_hit``)."""
         if chk.valid(q, query):
             return ""
-        clear, pair = chk.clearance(q, query)
+        clear, arm, self._hit = chk.nearest(q, query)
+        pair = f"{chk.model.geom(arm).name}~{chk.model.geom(self._hit).name}" if arm >= 0 else ""
         return f"{pair} {clear * 1000:.0f} mm"
+
+    def _met(self, geom: int) -> int:
+        """1-based index of the object link ``geom`` belongs to; 1 (fixed, as the clamped
+        L1) for the scene, the torso or the other arm."""
+        for link, g in self.checker.links.items():
+            if g == geom:
+                return self._link_index[link]
+        return 1
 
     def _pair_score(self, hold: Candidate | None, rot: Candidate, q_hold: Vec) -> float:
         """Order of the pairs: both candidates' scores plus the arms' clearance to each other
@@ -277,6 +310,7 @@ class PairChoice(GraspChoice):
         sweep score only adds, so they are examined in score order until none can enter the
         best ``keep``). Without ``avoid_collisions``: the best one, unchecked."""
         first, examined = "", 0
+        met: frozenset[int] | None = frozenset()
         for tier in (1, 2):
             if tier < tiers:
                 continue  # the pair needs the wider set: start with it
@@ -298,11 +332,16 @@ class PairChoice(GraspChoice):
                     examined += 1
                 if c.solo:
                     first = first or c.solo
+                if met is not None:
+                    met = met | {self._met(c.hit)} if c.safe < 0 and c.hit >= 0 else None
                 if c.safe < min_turn(turn):
                     continue
                 done.append(c)
             if done:
+                self._static[(hand, link)] = None
                 return sorted(done, key=lambda c: c.total)[:keep], ""
+        before = self._static.get((hand, link), frozenset())
+        self._static[(hand, link)] = None if before is None or met is None else before | met
         first = (f"none of the {examined} reachable grasps of {link} by the {hand} hand is "
                  f"free, the best: {first}")
         return [], first
@@ -312,6 +351,7 @@ class PairChoice(GraspChoice):
         first (cheap), then the turn (the rotating hand's turn path is solved for it)."""
         c.turn_of = turn
         c.solo, c.safe = self._free([c], None, None, "solo")
+        c.hit = self._hit if c.safe < 0 else -1
         if rotating and turn is not None and not c.solo:
             self._turn_path(c, turn)
         elif rotating and turn is None and not c.sweep:
@@ -400,6 +440,7 @@ class PairChoice(GraspChoice):
         roles (where the grasp points are). Raises :class:`NotExecutableError` when no pair
         is collision-free."""
         self._roles = (hold_link, rotate_link)
+        self._static = {}
         clamped = hold_link == self._clamped  # L1: held by the fixture, not by a hand
         best: tuple[float, str, Candidate | None, str, Candidate | None, str, float] | None = None
         for hold_hand, rot_hand in (self.names, self.names[::-1]):
@@ -412,13 +453,26 @@ class PairChoice(GraspChoice):
         if r is None:
             raise NotExecutableError(
                 f"no collision-free grasps to hold {hold_link} and rotate {rotate_link}"
-                f" ({why})")
+                f" ({why})", self._blocked(hold_link, rotate_link, clamped))
         #: How far [deg] the turn may go (None: all of it): the world stops it there.
         self.turn_limit = (safe, why) if turn is not None and safe < turn.degrees else None
         self._plan = {rot_hand: (r, self.data.time)}
         if h is not None:
             self._plan[hold_hand] = (h, self.data.time)
         return hold_hand, rot_hand
+
+
+    def _blocked(self, hold_link: str, rotate_link: str, clamped: bool) -> tuple[Blocked, ...]:
+        """The action's links no hand could grasp in their role in the :meth:`assign` just
+        made (see :attr:`NotExecutableError.blocked`)."""
+        out = []
+        for link, role in ((hold_link, "hold"), (rotate_link, "turn")):
+            if role == "hold" and clamped:
+                continue
+            met = [self._static.get((h, link)) for h in self.names]
+            if all(m is not None for m in met):
+                out.append((link, role, frozenset().union(*met)))  # type: ignore[arg-type]
+        return tuple(out)
 
 
 def min_turn(turn: Turn | None) -> float:
