@@ -36,6 +36,8 @@ def main() -> None:
                     help="Baxter arms approach their grasps in this many seconds")
     ap.add_argument("--no-compensate", action="store_true",
                     help="dispatch starts at their planned times (the approach delays them)")
+    ap.add_argument("--fallback", default=None, choices=("ng", "ucm", "uacm", "none"),
+                    help="the model the loop falls back to (default: LoopConfig's; none: keep)")
     ap.add_argument("--fallback-after", type=int, default=None,
                     help="switch to NG from this many re-plans on (default: LoopConfig's)")
     ap.add_argument("--carry", choices=("rigid", "projected"), default="rigid",
@@ -46,6 +48,9 @@ def main() -> None:
                     help="re-plan budget of a run (default: LoopConfig's)")
     ap.add_argument("--no-monitor-ahead", action="store_true",
                     help="judge every offset, also those a turn ahead aligns away")
+    ap.add_argument("--max-turn", type=float, default=None,
+                    help="plans first sought with turns of at most this [deg] (0: never; "
+                         "default: LoopConfig's)")
     ap.add_argument("--start", type=int, default=1, help="first task index")
     ap.add_argument("--logs", type=Path, default=None,
                     help="also write each run's full log here as task-K.json (for diagnosis)")
@@ -74,10 +79,14 @@ def main() -> None:
                         compensate_approach=not args.no_compensate)
     if args.plan_tol is not None:
         config = replace(config, plan_tolerance_deg=args.plan_tol)
+    if args.fallback is not None:
+        config = replace(config, fallback_model=None if args.fallback == "none" else args.fallback)
     if args.fallback_after is not None:
         config = replace(config, fallback_after=args.fallback_after)
     if args.no_monitor_ahead:
         config = replace(config, monitor_ahead=False)
+    if args.max_turn is not None:
+        config = replace(config, max_turn_deg=args.max_turn or None)
     if args.max_replans is not None:
         config = replace(config, max_replans=args.max_replans)
     rows = []
@@ -102,7 +111,8 @@ def main() -> None:
                    "hands": world.hands.kind, "model": args.model, "preset": args.preset,
                    "approach_s": args.approach, "reach_time": reach,
                    "compensate": not args.no_compensate, "carry": args.carry, "fall": args.fall,
-                   "max_replans": config.max_replans, "monitor_ahead": config.monitor_ahead}
+                   "max_replans": config.max_replans, "monitor_ahead": config.monitor_ahead,
+                   "fallback": config.fallback_model, "max_turn_deg": config.max_turn_deg}
             rows.append(row)
             if args.logs is not None:
                 args.logs.mkdir(parents=True, exist_ok=True)

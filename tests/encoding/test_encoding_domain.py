@@ -430,3 +430,35 @@ def test_custom_planes() -> None:
     # One plane: only its angles and goals.
     text = problem_pddl(obj, *pair, EncodingOptions("ucm", planes=("z-axis",)))
     assert "xy-axes" not in text and "(angle L3 z-axis)" in text
+
+
+def test_a_turn_cap_splits_long_turns_and_bounds_the_plans_end() -> None:
+    """With ``max_turn_deg`` no turn goes further than the cap: a 3-link NG task whose plan
+    turns a link 100 deg at once needs two turns of at most 60 deg when capped at 60."""
+    from artiplan.backends import get_planner
+    from artiplan.encoding import problem_pddl
+    from artiplan.model import Configuration
+
+    obj = ArticulatedObject(3)
+    init = Configuration((0.0, 0.0, 0.0), (90.0, 90.0, 90.0))
+    target = Configuration((0.0, 0.0, 100.0), (90.0, 90.0, 90.0))
+
+    def longest(cap: float | None) -> float:
+        enc = EncodingOptions("ng", max_turn_deg=cap)
+        text = domain_pddl(obj, enc)
+        if cap is not None:
+            assert text.count(f"(<= (turned) {cap:g})") == 3  # both stops and observe
+        result = get_planner("artiplan").plan(
+            text, problem_pddl(obj, init, target, enc, goal_style="window"), time_limit=60)
+        assert result.plan is not None
+        acts = result.plan.actions
+        end = acts[-1].time  # a turn may go on to the plan's end
+        turns = [next((b.time for b in acts[i + 1:] if b.name == a.name.replace("start", "stop")
+                       and b.args == a.args), end) - a.time
+                 for i, a in enumerate(acts) if a.name.startswith("start")]
+        return max(turns) * enc.speed_i
+
+    assert longest(None) > 90.0
+    assert longest(60.0) <= 60.0 + 1e-6
+    with pytest.raises(ValueError, match="max_turn_deg"):
+        EncodingOptions("ng", max_turn_deg=0.0)

@@ -240,8 +240,8 @@ def test_no_plan_with_the_gravity_model_tries_the_fallback_model_before_giving_u
     world = make_world(obj, init, hands="virtual", seed=6)
     from artiplan.execution.loop import ClosedLoop
 
-    loop = ClosedLoop(world, target, LoopConfig(EncodingOptions("ucm", speed_g=0.5)), None, 6,
-                      None)
+    cfg = LoopConfig(EncodingOptions("ucm", speed_g=0.5), max_turn_deg=None)  # one try each
+    loop = ClosedLoop(world, target, cfg, None, 6, None)
     real = loop.planner.plan
     models: list[str] = []
 

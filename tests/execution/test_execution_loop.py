@@ -73,3 +73,33 @@ def test_a_diverging_physics_ends_the_run_as_failed() -> None:
     assert "physics diverged" in log.final["error"]
     assert log.final["time"] == pytest.approx(when[0])  # not the reset clock
     assert all(b >= a for a, b in zip(seen, seen[1:], strict=False))  # time never went back
+
+
+def test_plans_are_sought_with_short_turns_first() -> None:
+    """LoopConfig.max_turn_deg: the loop's plans turn no link further than the cap at once
+    while such a plan is found within capped_time_limit, else it plans without the cap."""
+    from artiplan.model import Configuration
+    from artiplan.world import make_world
+
+    obj = ArticulatedObject(3)
+    init = Configuration((0.0, 0.0, 0.0), (90.0, 90.0, 90.0))
+    target = Configuration((0.0, 0.0, 100.0), (90.0, 90.0, 90.0))
+
+    def longest_turn(cfg: LoopConfig, lines: list[str]) -> float:
+        world = make_world(obj, init, hands="virtual", seed=1)
+        log = run_loop(world, target, cfg, progress=lines.append, seed=1)
+        assert log.success
+        acts = log.plans[0]["actions"]
+        end = acts[-1]["time"]
+        return 10.0 * max(
+            next((b["time"] for b in acts[i + 1:]
+                  if b["action"] == a["action"].replace("start", "stop")), end) - a["time"]
+            for i, a in enumerate(acts) if a["action"].startswith("(start"))
+
+    lines: list[str] = []
+    assert longest_turn(LoopConfig(EncodingOptions("ng"), max_turn_deg=60.0), lines) <= 60.0
+    assert not any("planning with longer ones" in line for line in lines)
+    # No time to find a capped plan: planned without the cap, and said so.
+    cfg = LoopConfig(EncodingOptions("ng"), max_turn_deg=60.0, capped_time_limit=1e-9)
+    assert longest_turn(cfg, lines) > 90.0
+    assert any("planning with longer ones" in line for line in lines)

@@ -98,6 +98,7 @@ def _header(options: EncodingOptions) -> str:
                        "(blocked-hold ?l - link)", "(blocked-turn ?l - link)",
                        "(clears ?l1 - link ?l2 - link)", "(cleared ?l - link)",
                        "(turned-enough)"]
+    if options.counts_turn:
         functions.append("(turned)")
     if options.carry == "projected":
         functions.append("(carry ?l1 - link ?l2 - link ?p - plane)")
@@ -135,7 +136,12 @@ def _robot(options: EncodingOptions, sign: str) -> str:
     timed = options.has_reach
     ready = "\n      (not (reaching))" if timed else ""
     reach = "\n      (reaching)\n      (assign (reach-clock) 0)" if timed else ""
-    moved = ""
+    moved, within = "", ""
+    if options.counts_turn:
+        held_start += "\n      (assign (turned) 0)"
+        moved = f"\n      (increase (turned) (* #t {speed}))"
+    if options.max_turn_deg is not None:
+        within = f"\n      (<= (turned) {fmt_number(options.max_turn_deg)})"
     if options.refusals:
         # A refused start waits until its rotated link (and so the pair) has moved: a turn
         # of that link or of one base-ward of it has stopped (a turn further out does not
@@ -145,12 +151,11 @@ def _robot(options: EncodingOptions, sign: str) -> str:
         ready += (f"\n      (or (unlocked ?l2) (not (refused-{sign} ?l1 ?l2 ?p)))"
                   "\n      (or (cleared ?l1) (not (blocked-hold ?l1)))"
                   "\n      (or (cleared ?l2) (not (blocked-turn ?l2)))")
-        held_start += "\n      (assign (turned) 0)\n      (not (turned-enough))"
+        held_start += "\n      (not (turned-enough))"
         reach += ("\n      (when (turned-enough) (unlocked ?l2))\n      (forall (?l - link)"
                   "\n        (when (and (turned-enough) (affects ?l2 ?l)) (unlocked ?l)))"
                   "\n      (forall (?l - link)"
                   "\n        (when (and (turned-enough) (clears ?l2 ?l)) (cleared ?l)))")
-        moved = f"\n      (increase (turned) (* #t {speed}))"
     if options.torque_fall:
         # The factors are the percept's geometry: links the robot tilts (a turn on the gravity
         # plane) fall at the paper's uniform speed from then on (their new torques are not
@@ -177,7 +182,7 @@ def _robot(options: EncodingOptions, sign: str) -> str:
     :parameters (?l1 - link ?l2 - link ?p - plane)
     :precondition (and
       (connected ?l1 ?l2)
-      ({flag} ?l2 ?p))
+      ({flag} ?l2 ?p){within})
     :effect (and
       (not (in-use))
       (free-to-move ?l1)
@@ -398,12 +403,15 @@ _TURNED = f"""
     :effect (and (turned-enough)))
 """
 
-_OBSERVE = """
+def _observe(options: EncodingOptions) -> str:
+    within = ("" if options.max_turn_deg is None
+              else f"(<= (turned) {fmt_number(options.max_turn_deg)})")
+    return f"""
   ;; No effect: lets a plan end at the moment a process completes the goal (VAL checks the
   ;; goal at the last happening).
   (:action observe
     :parameters ()
-    :precondition (and)
+    :precondition (and{" " + within if within else ""})
     :effect (and))
 """
 
@@ -430,5 +438,5 @@ def domain_pddl(obj: ArticulatedObject | None, options: EncodingOptions) -> str:
         parts.append(_reach())
     if options.refusals:
         parts.append(_TURNED)
-    parts.append(_OBSERVE)
+    parts.append(_observe(options))
     return "".join(parts) + ")\n"

@@ -60,6 +60,12 @@ class EncodingOptions:
             (:mod:`artiplan.encoding.fall`; links near rest, or folded back over their
             joint, fall much more slowly). For the closed loop, which re-plans from each
             percept; the suite's domains do not have it.
+        max_turn_deg: The longest turn [deg] a plan may make in one grasp (None: any): a
+            turn is stopped, and a plan ends, before it has gone further. For the closed
+            loop: with a reach time the planner preferred one long turn to several short
+            ones, up to 3 revolutions of L3 carrying L4-L6 (1109 deg) to line its goal links
+            up with their windows, which arms do in many re-grasps and the carried links do
+            not follow as modelled; 180 deg reaches any angle the shorter way round.
     """
 
     model: Model = "ng"
@@ -73,6 +79,7 @@ class EncodingOptions:
     carry: Carry = "rigid"
     refusals: bool = False
     fall: Fall = "uniform"
+    max_turn_deg: float | None = None
 
     def __post_init__(self) -> None:
         if self.model not in MODELS:
@@ -94,6 +101,8 @@ class EncodingOptions:
             raise ValueError(f"fall={self.fall!r} needs the ucm model, not {self.model!r}")
         if self.reach_time is not None and self.reach_time < 0:
             raise ValueError(f"reach_time must be >= 0, got {self.reach_time}")
+        if self.max_turn_deg is not None and self.max_turn_deg <= 0:
+            raise ValueError(f"max_turn_deg must be positive, got {self.max_turn_deg}")
 
     @property
     def has_gravity(self) -> bool:
@@ -104,6 +113,12 @@ class EncodingOptions:
     def has_reach(self) -> bool:
         """True when the domain models the reach time (see ``reach_time``)."""
         return self.reach_time is not None and self.reach_time >= 1.5 * VAL_EVENT_WINDOW
+
+    @property
+    def counts_turn(self) -> bool:
+        """True when the domain keeps ``(turned)``, the degrees of the turn in progress
+        (for ``refusals`` and ``max_turn_deg``)."""
+        return self.refusals or self.max_turn_deg is not None
 
     @property
     def torque_fall(self) -> bool:

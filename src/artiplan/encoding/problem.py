@@ -45,7 +45,7 @@ def _init_facts(obj: ArticulatedObject, init: Configuration, options: EncodingOp
     facts = ["(reaching)"] if reaching and options.has_reach else []
     facts += [f"(connected {a} {b})" for a, b in obj.joints if (a, b) not in blocked]
     facts += _refusal_facts(obj, refused, ungraspable)
-    if options.refusals:
+    if options.counts_turn:
         facts.append("(= (turned) 0)")
     facts += [f"(affects {a} {b})" for a, b in obj.affects()]
     facts += [f"(free-to-move {lk})" for lk in obj.links]

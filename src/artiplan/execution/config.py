@@ -71,6 +71,12 @@ class LoopConfig:
         monitor_ahead: Let pass a link's offset on a plane that a turn still ahead in the plan
             rotates it on, up to what that turn's alignment takes (``execution.regrasp``:
             ``aligned_ahead``): execution corrects it, a re-plan is not needed for it.
+        max_turn_deg: Plans are sought first with no turn longer than this [deg]
+            (``EncodingOptions.max_turn_deg``), for at most ``capped_time_limit`` [s] wall;
+            if none is found, without the cap (None: never capped). A planner that may turn as
+            long as it likes used turns of up to 3 revolutions as clocks, waiting for gravity
+            to bring carried goal links into their windows.
+        capped_time_limit: See ``max_turn_deg``.
         compensate_approach: With hands that approach their grasps in simulated time and a
             ``reach_time`` in the encoding: plans start with the hands away (the first grasp
             waits ``reach_time`` too), each start is dispatched ``reach_time`` early, and the
@@ -99,6 +105,8 @@ class LoopConfig:
     monitor_tip_links: bool = False
     compensate_approach: bool = True
     monitor_ahead: bool = True
+    max_turn_deg: float | None = 180.0
+    capped_time_limit: float = 10.0
 
     def __post_init__(self) -> None:
         if self.threshold_deg <= 0 or self.accept_deg <= 0 or self.plan_tolerance_deg <= 0:

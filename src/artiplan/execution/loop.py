@@ -347,11 +347,25 @@ class ClosedLoop:
         rotations ``avoid[0]`` nor grasping the links ``avoid[1]`` (before they have moved)."""
         planned_around = bool(avoid[0] or avoid[1])
         enc = replace(self.encoding, refusals=True) if planned_around else self.encoding
+        cfg = self.config
+        result = None
+        if cfg.max_turn_deg is not None:  # first with short turns (LoopConfig.max_turn_deg)
+            capped = replace(enc, max_turn_deg=cfg.max_turn_deg)
+            result = self.planner.plan(
+                domain_pddl(self.obj, capped),
+                build_problem(self.obj, start, self.target, capped, self.goal,
+                              hands_away=self.lead > 0.0, refused=avoid[0],
+                              ungraspable=avoid[1]),
+                time_limit=min(cfg.capped_time_limit, cfg.plan_time_limit))
+            if _solved(result):
+                return result
+            self.progress(f"no plan with turns of at most {cfg.max_turn_deg:g} deg "
+                          f"({result.status.value}): planning with longer ones")
         domain = domain_pddl(self.obj, enc) if planned_around else self.domain
         problem = build_problem(self.obj, start, self.target, enc, self.goal,
                                 hands_away=self.lead > 0.0, refused=avoid[0],
                                 ungraspable=avoid[1])
-        return self.planner.plan(domain, problem, time_limit=self.config.plan_time_limit)
+        return self.planner.plan(domain, problem, time_limit=cfg.plan_time_limit)
 
     # -- execution ------------------------------------------------------------------------
     def _execute(self, pred: Prediction) -> str | None:
