@@ -26,7 +26,9 @@ def _world(n: int, seed: int):  # type: ignore[no-untyped-def]
 def test_replan_starts_from_the_perceived_state() -> None:
     world, target = _world(3, 4)
     push = Intervention(0.0, "L3", "z-axis", 25.0, fraction=0.3)
-    cfg = LoopConfig(EncodingOptions("ng"), interventions=(push,), max_replans=2)
+    # Every offset judged: the push is what a later turn of L3 could align away.
+    cfg = LoopConfig(EncodingOptions("ng"), interventions=(push,), max_replans=2,
+                     monitor_ahead=False)
     log = run_loop(world, target, cfg, seed=4)
     assert log.interventions and log.replans
     assert "L3 off the prediction" in log.replans[0]["reason"]

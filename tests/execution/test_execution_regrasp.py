@@ -96,15 +96,21 @@ def test_an_offset_a_turn_ahead_aligns_is_not_judged() -> None:
 
     predicted = Configuration((10.0, 20.0, 30.0), (90.0, 100.0, 110.0))
     seen = Configuration((10.0, 31.0, 30.0 + MAX_LOST_DEG + 1.0), (90.0, 92.0, 110.0))
-    ahead = frozenset({(2, "xy-axes"), (2, "z-axis"), (3, "xy-axes")})
+    # L2: ahead by 11 deg of a 30 deg increase on xy, 8 deg of a 20 deg decrease on z.
+    ahead = {(2, "xy-axes"): (1, 30.0), (2, "z-axis"): (-1, 20.0), (3, "xy-axes"): (-1, 90.0)}
     judged, notes = aligned_ahead(predicted, seen, ahead)
-    # L2's offsets on both planes are within what the turns' alignment takes: as seen.
     assert judged.angle(2, "xy-axes") == 31.0 and judged.angle(2, "z-axis") == 92.0
     assert notes == ["L2 xy-axes +11.0", "L2 z-axis -8.0"]
-    # L3's is larger than MAX_LOST_DEG: judged against the plan, as without a turn ahead.
+    # L3 is behind its decrease by more than MAX_LOST_DEG: judged against the plan.
     assert judged.angle(3, "xy-axes") == 30.0
+    # Ahead by more than the turn's extent: the turn would have to go back, so judged.
+    short = {(2, "xy-axes"): (1, 10.0)}
+    assert aligned_ahead(predicted, seen, short)[0].angle(2, "xy-axes") == 20.0
+    # Behind by less than MAX_LOST_DEG, whatever the extent: the turn goes on longer.
+    assert aligned_ahead(predicted, seen, {(2, "xy-axes"): (-1, 5.0)})[0].angle(
+        2, "xy-axes") == 31.0
     # Without a turn ahead nothing passes.
-    assert aligned_ahead(predicted, seen, frozenset()) == (predicted, [])
+    assert aligned_ahead(predicted, seen, {}) == (predicted, [])
     # Near the vertical an azimuth is not aligned (behind_deg), so it is judged.
     pole = Configuration((10.0, 20.0, 30.0), (90.0, POLE_DEG / 2, 110.0))
     near = Configuration((10.0, 31.0, 30.0), (90.0, POLE_DEG / 2, 110.0))

@@ -13,6 +13,7 @@ new plan starts, else simulated time stands still while the planner thinks.
 
 from __future__ import annotations
 
+import math
 import time
 from collections.abc import Callable
 from dataclasses import asdict, replace
@@ -37,7 +38,7 @@ from artiplan.execution.monitor import Monitor, goal_errors
 from artiplan.execution.predict import Prediction
 from artiplan.execution.problem import build_problem, canonical
 from artiplan.execution.refusals import Refusal, Refusals, describe
-from artiplan.execution.regrasp import Resume, align, aligned_ahead, resume_after
+from artiplan.execution.regrasp import Ahead, Resume, align, aligned_ahead, resume_after
 from artiplan.execution.runlog import RunLog, conf_dict
 from artiplan.model import Configuration
 from artiplan.semantics import Plan
@@ -99,8 +100,8 @@ class ClosedLoop:
         self.carried: frozenset[str] = frozenset()
         #: The rotation in progress when the arms stop it short (execution.regrasp).
         self.resume: Resume | None = None
-        #: (link index, plane) of the turns still ahead in the plan being executed.
-        self._ahead: frozenset[tuple[int, str]] = frozenset()
+        #: The next turn of each (link index, plane) still ahead in the plan being executed.
+        self._ahead: Ahead = {}
         #: The turn in progress: its step, the world time it started [s], speed [deg/s].
         self._turn: tuple[Rotate, float, float] | None = None
         self.log = RunLog(
@@ -392,7 +393,7 @@ class ClosedLoop:
                 self._intervene(self.pending.pop(0), index)
                 next_mon = now  # look again at once
                 continue
-            self._ahead = self._turns_ahead(actions[i:])
+            self._ahead = self._turns_ahead(actions[i:], pred)
             if t_res <= now + tol and (i >= len(actions) or t_act > now + tol):
                 reason = self._observe(pred, index, "happening")
                 if reason is not None and self._may_replan():
@@ -440,16 +441,22 @@ class ClosedLoop:
         return (f"{verdict.worst_link} off the prediction by {verdict.worst_error:.1f} deg "
                 f"(threshold {verdict.threshold:g})")
 
-    def _turns_ahead(self, steps: list[Step]) -> frozenset[tuple[int, str]]:
-        """(1-based link index, plane) of the turns still to start (dispatches and a pending
-        re-grasp), each aligned on its link when it starts (:func:`aligned_ahead`); none
-        when ``LoopConfig.monitor_ahead`` is off."""
+    def _turns_ahead(self, steps: list[Step], pred: Prediction) -> Ahead:
+        """The next turn of each (link, plane) still to start (a pending re-grasp first,
+        then the dispatches), each aligned on its link when it starts
+        (:func:`aligned_ahead`); none when ``LoopConfig.monitor_ahead`` is off."""
+        out: Ahead = {}
         if not self.config.monitor_ahead:
-            return frozenset()
-        turns = [s for s in steps if isinstance(s, Rotate)]
+            return out
         if self.resume is not None:
-            turns.append(self.resume.step)
-        return frozenset((self.obj.index(s.turn), s.plane) for s in turns)
+            r = self.resume.step
+            out[(self.obj.index(r.turn), r.plane)] = (
+                r.direction, self.resume.remaining(pred.t0, self.resume.due))
+        for s in steps:
+            if isinstance(s, Rotate):
+                extent = math.inf if s.duration is None else self._speed(s) * s.duration
+                out.setdefault((self.obj.index(s.turn), s.plane), (s.direction, extent))
+        return out
 
     def _due(self, step: Step, pred: Prediction) -> float:
         """World time [s] to dispatch ``step``: a rotation ``lead`` early (its reach)."""
