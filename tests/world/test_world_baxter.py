@@ -244,3 +244,20 @@ def test_baxter_says_which_link_no_hand_can_grasp() -> None:
     assert 5 in blocked[("L4", "turn")]  # L5, folded back beside it, among what was met
     assert ("L3", "hold") not in blocked  # L3 itself can be held
     assert world.hands.held("left") is None and world.hands.held("right") is None
+
+
+def test_baxter_refuses_a_grasp_whose_last_jump_would_go_into_the_other_arm(monkeypatch) -> None:
+    """A grasp's IK is solved again where the link is when the arm arrives and the arm
+    jumps there: a solution 3 cm into the other arm is refused (measured: such a jump made
+    MuJoCo's step diverge), and the arm stays where it was."""
+    from artiplan.world.pairs import NotExecutableError
+
+    conf = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
+    world = make_world(ArticulatedObject(4), conf, hands="baxter")
+    hands = world.hands
+    into_left = np.array([1.311, 0.18, 1.961, 0.9, -1.287, 0.598, 0.723])  # 3.4 cm into it
+    monkeypatch.setattr(hands, "_grasp_solution", lambda hand, link: (into_left, 0.0))
+    before = world.data.qpos.copy()
+    with pytest.raises(NotExecutableError, match="right hand's grasp of L3 would put it"):
+        hands.grasp("right", "L3")
+    assert np.array_equal(world.data.qpos, before) and hands.held("right") is None
