@@ -49,6 +49,12 @@ ARM_JOINTS = ("s0", "s1", "e0", "e1", "w0", "w1", "w2")
 APPROACH_DT = 0.02
 #: Time [s] the arms get to settle on their grasps after an approach.
 APPROACH_SETTLE_S = 0.2
+#: The final straight leg (7 cm in to the grasp, checked at 3 mm from every other link) takes
+#: at least this long [s]. At its own pace (0.6-0.7 s) the simulated arm lagged its path by
+#: enough to touch a neighbouring link in 2 of 12 6-link cases (1.9 and 0.2 mm deep); at
+#: 0.9 s still 2, at 1.2 s 1 (0.2 mm), the reach time 0.6-0.8 s longer
+#: (benchmarks/world_collision.py --approach 1.0).
+FINAL_LEG_MIN_S = 1.2
 #: Default retreat after a release: this far [m] back along the hand's approach axis, in at
 #: least this many simulated seconds.
 RETREAT_M = 0.1
@@ -269,8 +275,8 @@ class ApproachMotion(PairChoice):
             return final
         # Timed on its own (one segment, rest to rest), not stretched to the planned legs'
         # duration: those stop at each IK waypoint when the joint-space line is not straight
-        # enough, 1.3-1.6 s for 7 cm against 0.6-0.7 s for the one segment that is driven.
-        return TimedPath(path, self.limits, floor)
+        # enough, 1.3-1.6 s for 7 cm; not faster than FINAL_LEG_MIN_S either.
+        return TimedPath(path, self.limits, max(floor, FINAL_LEG_MIN_S))
 
     def _contacts_off(self, hands: tuple[str, ...]) -> frozenset[tuple[int, int]]:
         """The geom pairs of ``hands``' grippers and the links the physics lets them touch now
