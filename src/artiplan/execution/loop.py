@@ -20,7 +20,7 @@ from dataclasses import asdict, replace
 from typing import TYPE_CHECKING, Any, cast
 
 from artiplan.backends import get_planner
-from artiplan.encoding import domain_pddl, make_goal
+from artiplan.encoding import EncodingOptions, domain_pddl, make_goal
 from artiplan.encoding.domain import CLEAR_DEG
 from artiplan.encoding.options import Model
 from artiplan.encoding.problem import Ungraspable
@@ -346,27 +346,26 @@ class ClosedLoop:
     def _solve_with(self, start: Configuration, avoid: Avoid) -> Any:
         """One planner call from ``start`` with the model in use, not starting the refused
         rotations ``avoid[0]`` nor grasping the links ``avoid[1]`` (before they have moved)."""
-        planned_around = bool(avoid[0] or avoid[1])
-        enc = replace(self.encoding, refusals=True) if planned_around else self.encoding
+        enc = replace(self.encoding, refusals=True) if avoid[0] or avoid[1] else self.encoding
         cfg = self.config
-        result = None
         if cfg.max_turn_deg is not None:  # first with short turns (LoopConfig.max_turn_deg)
-            capped = replace(enc, max_turn_deg=cfg.max_turn_deg)
-            result = self.planner.plan(
-                domain_pddl(self.obj, capped),
-                build_problem(self.obj, start, self.target, capped, self.goal,
-                              hands_away=self.lead > 0.0, refused=avoid[0],
-                              ungraspable=avoid[1]),
-                time_limit=min(cfg.capped_time_limit, cfg.plan_time_limit))
+            result = self._call(start, replace(enc, max_turn_deg=cfg.max_turn_deg), avoid,
+                                min(cfg.capped_time_limit, cfg.plan_time_limit))
             if _solved(result):
                 return result
             self.progress(f"no plan with turns of at most {cfg.max_turn_deg:g} deg "
                           f"({result.status.value}): planning with longer ones")
-        domain = domain_pddl(self.obj, enc) if planned_around else self.domain
+        return self._call(start, enc, avoid, cfg.plan_time_limit)
+
+    def _call(self, start: Configuration, enc: EncodingOptions, avoid: Avoid,
+              limit: float) -> Any:
+        """The planner on ``enc``'s domain and the problem from ``start`` around ``avoid``,
+        within ``limit`` [s] wall."""
+        domain = self.domain if enc == self.encoding else domain_pddl(self.obj, enc)
         problem = build_problem(self.obj, start, self.target, enc, self.goal,
                                 hands_away=self.lead > 0.0, refused=avoid[0],
                                 ungraspable=avoid[1])
-        return self.planner.plan(domain, problem, time_limit=cfg.plan_time_limit)
+        return self.planner.plan(domain, problem, time_limit=limit)
 
     # -- execution ------------------------------------------------------------------------
     def _execute(self, pred: Prediction) -> str | None:
