@@ -49,12 +49,15 @@ ARM_JOINTS = ("s0", "s1", "e0", "e1", "w0", "w1", "w2")
 APPROACH_DT = 0.02
 #: Time [s] the arms get to settle on their grasps after an approach.
 APPROACH_SETTLE_S = 0.2
-#: The final straight leg (7 cm in to the grasp, checked at 3 mm from every other link) takes
-#: at least this long [s]. At its own pace (0.6-0.7 s) the simulated arm lagged its path by
-#: enough to touch a neighbouring link in 2 of 12 6-link cases (1.9 and 0.2 mm deep); at
-#: 0.9 s still 2, at 1.2 s 1 (0.2 mm), the reach time 0.6-0.8 s longer
-#: (benchmarks/world_collision.py --approach 1.0).
+#: A final straight leg (7 cm in to the grasp, checked at 3 mm from every other link) that
+#: passes nearer than SLOW_NEAR_M [m] to anything but its link takes at least
+#: FINAL_LEG_MIN_S [s]. At its own pace (0.6-0.7 s) the simulated arm lagged its path by enough
+#: to touch a neighbouring link in 2 of 12 6-link cases (1.9 and 0.2 mm deep); at 0.9 s still
+#: 2, at 1.2 s 1 (0.2 mm) (benchmarks/world_collision.py --approach 1.0). Every leg slowed
+#: made every reach 0.5-0.6 s longer, and the loop's runs worse in that run (4 links 18/20, 6
+#: links 1 of the first 9), so only the legs that pass near something are.
 FINAL_LEG_MIN_S = 1.2
+SLOW_NEAR_M = 0.01
 #: Default retreat after a release: this far [m] back along the hand's approach axis, in at
 #: least this many simulated seconds.
 RETREAT_M = 0.1
@@ -275,8 +278,10 @@ class ApproachMotion(PairChoice):
             return final
         # Timed on its own (one segment, rest to rest), not stretched to the planned legs'
         # duration: those stop at each IK waypoint when the joint-space line is not straight
-        # enough, 1.3-1.6 s for 7 cm; not faster than FINAL_LEG_MIN_S either.
-        return TimedPath(path, self.limits, max(floor, FINAL_LEG_MIN_S))
+        # enough, 1.3-1.6 s for 7 cm; not faster than FINAL_LEG_MIN_S when it passes near.
+        if not chk.path_valid(path, Query(query.hands, query.allowed, SLOW_NEAR_M)):
+            floor = max(floor, FINAL_LEG_MIN_S)
+        return TimedPath(path, self.limits, floor)
 
     def _contacts_off(self, hands: tuple[str, ...]) -> frozenset[tuple[int, int]]:
         """The geom pairs of ``hands``' grippers and the links the physics lets them touch now
