@@ -90,6 +90,7 @@ def main() -> None:
     if args.max_replans is not None:
         config = replace(config, max_replans=args.max_replans)
     rows = []
+    args.out.parent.mkdir(parents=True, exist_ok=True)
     with args.out.open("a" if args.start > 1 else "w") as fh:
         for k in range(args.start, args.start + args.tasks):
             task = make_task(args.links, k, seed=args.seed)
