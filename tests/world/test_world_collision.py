@@ -5,11 +5,12 @@ from __future__ import annotations
 import random
 
 import mujoco
+import numpy as np
 import pytest
 
 from artiplan.model import ArticulatedObject, Configuration, random_configuration
 from artiplan.world import make_world
-from artiplan.world.collision import arm_contacts, arm_geoms, clearance
+from artiplan.world.collision import ArmGeoms, _pairs, arm_contacts, arm_geoms, clearance
 
 
 def test_clearance_sees_a_collision_and_ignores_the_mounted_shoulder() -> None:
@@ -26,6 +27,52 @@ def test_clearance_sees_a_collision_and_ignores_the_mounted_shoulder() -> None:
     dist, pair = clearance(world.model, world.data, geoms)
     assert dist < 0.0 and "base_link_col" in pair, pair  # the torso
     assert arm_contacts(world.model, world.data, geoms) > 0
+
+
+def _pairs_one_geom_at_a_time(
+    model: mujoco.MjModel, data: mujoco.MjData, geoms: ArmGeoms, held: str | None,
+    with_links: bool, margin: float, with_other: bool, with_body: bool,
+) -> list[tuple[int, int]]:
+    """The pre-filter as it was written first (a loop over the arm's geoms): the reference."""
+    held_id = geoms.links.get(held, -1) if held is not None else -1
+    pairs = []
+    for a in geoms.arm:
+        torso = () if a in geoms.shoulder or not with_body else geoms.torso
+        obstacles = np.array([*torso, *(geoms.other if with_other else ()),
+                              *(geoms.scene if with_body else ()),
+                              *(geoms.links.values() if with_links else ())], dtype=int)
+        if a in geoms.gripper:
+            obstacles = obstacles[obstacles != held_id]
+        gap = np.linalg.norm(data.geom_xpos[obstacles] - data.geom_xpos[a], axis=1)
+        gap -= model.geom_rbound[obstacles] + model.geom_rbound[a]
+        pairs += [(a, int(b)) for b in obstacles[gap < margin]]
+    return pairs
+
+
+def test_the_pair_prefilter_keeps_the_pairs_and_their_order() -> None:
+    obj = ArticulatedObject(6)
+    world = make_world(obj, random_configuration(6, random.Random(3)), hands="baxter")
+    rng = np.random.default_rng(0)
+    q = world.hands._q["left"]
+    checked = 0
+    for _ in range(12):  # random left-arm poses, some into the torso, the links, the other arm
+        world.data.qpos[q] = rng.uniform(-1.5, 1.5, size=len(q))
+        mujoco.mj_kinematics(world.model, world.data)
+        geoms = arm_geoms(world.model, "left", list(obj.links))
+        for held in (None, "L3"):
+            for flags in ((True, True, True), (False, True, True), (True, False, False)):
+                for margin in (0.01, 0.05, 0.2):
+                    args = (world.model, world.data, geoms, held, flags[0], margin, *flags[1:])
+                    got = _pairs(*args)
+                    assert got == _pairs_one_geom_at_a_time(*args)
+                    checked += len(got)
+    assert checked > 0
+    # The held link is never paired with the gripper; the shoulder never with the torso.
+    geoms = arm_geoms(world.model, "left", list(obj.links))
+    pairs = _pairs(world.model, world.data, geoms, "L3", True, 10.0)
+    assert (geoms.gripper[0], geoms.links["L3"]) not in pairs
+    assert (geoms.arm[0], geoms.links["L3"]) in pairs
+    assert not {(a, t) for a in geoms.shoulder for t in geoms.torso} & set(pairs)
 
 
 @pytest.mark.slow

@@ -10,7 +10,7 @@ allowed to touch the link it holds.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 import mujoco
 import numpy as np
@@ -41,6 +41,9 @@ class ArmGeoms:
     other: tuple[int, ...]
     scene: tuple[int, ...]
     links: dict[str, int]
+    #: (held, flags) -> the arrays :func:`_pairs` filters (filled on first use).
+    cache: dict[tuple[str | None, bool, bool, bool], tuple[np.ndarray, np.ndarray, np.ndarray]] \
+        = field(default_factory=dict, init=False, compare=False, repr=False)
 
 
 def arm_geoms(
@@ -101,24 +104,43 @@ def _pairs(
     with_body: bool = True,
 ) -> list[tuple[int, int]]:
     """(arm geom, obstacle geom) pairs to check whose bounding spheres come within
-    ``margin`` [m] (a vectorised pre-filter: most pairs are far apart). ``with_body``: torso
-    and scene; ``with_other``: the other arm; ``with_links``: the object's links."""
-    held_id = geoms.links.get(held, -1) if held is not None else -1
-    links = tuple(geoms.links.values()) if with_links else ()
-    other = geoms.other if with_other else ()
-    scene = geoms.scene if with_body else ()
-    pairs = []
-    for a in geoms.arm:
-        torso = () if a in geoms.shoulder or not with_body else geoms.torso
-        obstacles = np.array([*torso, *other, *scene, *links], dtype=int)
-        if a in geoms.gripper:
-            obstacles = obstacles[obstacles != held_id]
-        if obstacles.size == 0:
-            continue
-        gap = np.linalg.norm(data.geom_xpos[obstacles] - data.geom_xpos[a], axis=1)
-        gap -= model.geom_rbound[obstacles] + model.geom_rbound[a]
-        pairs += [(a, int(b)) for b in obstacles[gap < margin]]
-    return pairs
+    ``margin`` [m] (a vectorised pre-filter: most pairs are far apart), in the order arm geom,
+    then torso, other arm, scene, links. ``with_body``: torso and scene; ``with_other``: the
+    other arm; ``with_links``: the object's links. The gripper may touch ``held``; the
+    shoulder is not checked against the torso."""
+    arm, obstacles, allowed = _candidates(geoms, held, with_links, with_other, with_body)
+    if obstacles.size == 0:
+        return []
+    # One (arm x obstacle) matrix instead of a loop over the arm's geoms: this runs inside
+    # every grasp IK iteration (repulsion), where the loop's numpy overhead dominated.
+    pos = data.geom_xpos
+    gap = np.linalg.norm(pos[obstacles][None, :, :] - pos[arm][:, None, :], axis=2)
+    gap -= model.geom_rbound[obstacles][None, :] + model.geom_rbound[arm][:, None]
+    rows, cols = np.nonzero((gap < margin) & allowed)
+    return list(zip(arm[rows].tolist(), obstacles[cols].tolist(), strict=True))
+
+
+def _candidates(
+    geoms: ArmGeoms, held: str | None, with_links: bool, with_other: bool, with_body: bool
+) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The arm's geoms, the obstacles and which (arm, obstacle) pairs may be checked at all
+    (cached per ``geoms`` and flags: they do not change during a run)."""
+    key = (held, with_links, with_other, with_body)
+    cache = geoms.cache
+    if key not in cache:
+        torso = geoms.torso if with_body else ()
+        obstacles = np.array([*torso, *(geoms.other if with_other else ()),
+                              *(geoms.scene if with_body else ()),
+                              *(geoms.links.values() if with_links else ())], dtype=int)
+        arm = np.array(geoms.arm, dtype=int)
+        allowed = np.ones((arm.size, obstacles.size), dtype=bool)
+        shoulder = np.isin(arm, geoms.shoulder)
+        allowed[np.ix_(shoulder, np.arange(len(torso)))] = False
+        held_id = geoms.links.get(held, -1) if held is not None else -1
+        gripper = np.isin(arm, geoms.gripper)
+        allowed[np.ix_(gripper, obstacles == held_id)] = False
+        cache[key] = (arm, obstacles, allowed)
+    return cache[key]
 
 
 def clearance(

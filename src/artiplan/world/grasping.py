@@ -22,6 +22,16 @@ import numpy as np
 from artiplan.world.collision import ArmGeoms, clearance, repulsion
 from artiplan.world.rotations import Vec, quat_axis_angle, quat_conj, quat_mul, quat_to_mat
 
+try:  # the LAPACK gufunc np.linalg.solve calls: the same result without its per-call checks,
+    # which cost more than the 6x6 solve itself in the grasp IK (~300 000 calls in a demo)
+    from numpy.linalg import _umath_linalg
+
+    def _solve(a: np.ndarray, b: np.ndarray) -> np.ndarray:
+        """``np.linalg.solve(a, b)`` for a non-singular float64 ``a`` and a 2-D ``b``."""
+        return _umath_linalg.solve(a, b, signature="dd->d")
+except ImportError:  # pragma: no cover - a numpy without it
+    _solve = np.linalg.solve
+
 #: A grasp whose IK solution misses the grasp point by more than this [m] is refused.
 REACH_TOLERANCE = 0.01
 #: Score of an unreachable candidate (above any sum of the other terms: reach comes first),
@@ -371,7 +381,7 @@ class GraspChoice:
                 )
             toward = toward + push
             rhs[:, 0], rhs[:, 1] = err, jac @ toward
-            sol = np.linalg.solve(jac @ jac.T + damp, rhs)
+            sol = _solve(jac @ jac.T + damp, rhs)  # SPD: never singular
             dq = jac.T @ (sol[:, 0] - sol[:, 1]) + toward
             step2 = float(dq @ dq)
             if step2 > 0.04:  # 0.2 rad: keep steps small so the linearisation holds
