@@ -106,7 +106,9 @@ def main() -> None:
                                    if h["action"].endswith("resumed")),
                    "collisions": len(log.collisions),
                    "latency_wall_s": [r["latency_wall_s"] for r in log.replans],
-                   "sim_s": round(log.final["time"] if log.final.get("error") else world.time, 3), "wall_s": round(time.perf_counter() - t0, 3),
+                   "sim_s": round(log.final["time"] if log.final.get("error")
+                                  else world.time, 3),
+                   "wall_s": round(time.perf_counter() - t0, 3),
                    "max_goal_error": log.final.get("max_goal_error"),
                    "error": log.final.get("error"),
                    "hands": world.hands.kind, "model": args.model, "preset": args.preset,
