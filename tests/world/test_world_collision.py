@@ -55,10 +55,11 @@ def test_the_pair_prefilter_keeps_the_pairs_and_their_order() -> None:
     rng = np.random.default_rng(0)
     q = world.hands._q["left"]
     checked = 0
+    # One ArmGeoms for every pose, as in a run: its cached arrays must not depend on the pose.
+    geoms = arm_geoms(world.model, "left", list(obj.links))
     for _ in range(12):  # random left-arm poses, some into the torso, the links, the other arm
         world.data.qpos[q] = rng.uniform(-1.5, 1.5, size=len(q))
         mujoco.mj_kinematics(world.model, world.data)
-        geoms = arm_geoms(world.model, "left", list(obj.links))
         for held in (None, "L3"):
             for flags in ((True, True, True), (False, True, True), (True, False, False)):
                 for margin in (0.01, 0.05, 0.2):
@@ -68,7 +69,6 @@ def test_the_pair_prefilter_keeps_the_pairs_and_their_order() -> None:
                     checked += len(got)
     assert checked > 0
     # The held link is never paired with the gripper; the shoulder never with the torso.
-    geoms = arm_geoms(world.model, "left", list(obj.links))
     pairs = _pairs(world.model, world.data, geoms, "L3", True, 10.0)
     assert (geoms.gripper[0], geoms.links["L3"]) not in pairs
     assert (geoms.arm[0], geoms.links["L3"]) in pairs
