@@ -9,7 +9,7 @@ import pytest
 
 from artiplan.model import ArticulatedObject, Configuration
 from artiplan.world import make_world
-from artiplan.world.motion import NEAR_CLEARANCE_M, Query, plan_path
+from artiplan.world.motion import MARGIN_M, NEAR_CLEARANCE_M, TRANSFER_CLEARANCE_M, Query, plan_path
 from artiplan.world.timing import ACCELERATION, VELOCITY, Limits, TimedPath
 
 CONF = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
@@ -192,8 +192,6 @@ def test_no_collision_free_pair_makes_the_action_not_executable(monkeypatch) -> 
 
 
 def test_clearance_beyond_the_contact_margin_is_refused() -> None:
-    from artiplan.world.motion import MARGIN_M
-
     world = make_world(ArticulatedObject(4), CONF, hands="baxter")
     chk = world.hands.checker
     q = {h: world.data.qpos[world.hands._q[h]] for h in world.hands.names}
@@ -270,3 +268,32 @@ def test_the_fast_validity_check_agrees_with_its_plain_definition() -> None:
                 dist >= need for _, _, dist in ref)
             seen += bool(ref)
     assert seen > 100  # most checks had contacts to filter, not only empty ones
+
+
+def test_path_clearance_agrees_with_path_valid_at_every_clearance() -> None:
+    """One pass of path_clearance answers what path_valid answers per clearance: the home pose
+    to the pre-grasp poses of hold L2 / rotate L3 in a straight line (a finger goes through
+    the fixture) and each arm's final leg."""
+    world = make_world(ArticulatedObject(4), CONF, hands="baxter", approach_s=1.0)
+    hands = world.hands
+    hold, rot = hands.assign("L2", "L3")
+    chk = hands.checker
+    chk.sync(world.data.qpos)
+    legs = {h: hands._leg(hands._plan[h][0]) for h in (hold, rot)}
+    moving = tuple(h for h in hands.names if h in legs)
+    start = np.concatenate([world.data.qpos[hands._q[h]] for h in moving])
+    goal = np.concatenate([legs[h][0] for h in moving])
+    cases = [([start, goal], Query(moving))]
+    cases += [(legs[h], Query((h,), hands.grip_pairs({h: link}))) for h, link in
+              ((hold, "L2"), (rot, "L3"))]
+    seen = []
+    for path, query in cases:
+        clear = chk.path_clearance(path, query)
+        seen.append(clear)
+        for need in (-0.01, 0.0, NEAR_CLEARANCE_M, 0.01, MARGIN_M):
+            q = Query(query.hands, query.allowed, need)
+            assert (clear >= need) == chk.path_valid(path, q)
+            stopped = chk.path_clearance(path, query, stop_below=need)
+            assert (stopped >= need) == (clear >= need)
+    # the straight motion is refused at the transfer clearance, the legs are clear
+    assert seen[0] < TRANSFER_CLEARANCE_M and min(seen[1:]) >= NEAR_CLEARANCE_M

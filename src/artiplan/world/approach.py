@@ -274,12 +274,14 @@ class ApproachMotion(PairChoice):
         chk.sync(self.data.qpos)
         query = Query(moving, self.grip_pairs({h: cands[h].link for h in moving}),
                       NEAR_CLEARANCE_M)
-        if not chk.path_valid(path, query):
+        # One pass answers both: collision-free (NEAR_CLEARANCE_M), and whether it passes near.
+        clear = chk.path_clearance(path, query, stop_below=NEAR_CLEARANCE_M)
+        if clear < NEAR_CLEARANCE_M:
             return final
         # Timed on its own (one segment, rest to rest), not stretched to the planned legs'
         # duration: those stop at each IK waypoint when the joint-space line is not straight
         # enough, 1.3-1.6 s for 7 cm; not faster than FINAL_LEG_MIN_S when it passes near.
-        if not chk.path_valid(path, Query(query.hands, query.allowed, SLOW_NEAR_M)):
+        if clear < SLOW_NEAR_M:
             floor = max(floor, FINAL_LEG_MIN_S)
         return TimedPath(path, self.limits, floor)
 

@@ -228,6 +228,23 @@ class ArmChecker:
     def path_valid(self, path: list[Vec], query: Query) -> bool:
         return all(self.segment_valid(a, b, query) for a, b in zip(path, path[1:], strict=False))
 
+    def path_clearance(self, path: list[Vec], query: Query, stop_below: float = -math.inf,
+                       step: float = CHECK_STEP_RAD) -> float:
+        """Smallest clearance [m] of the query's arms along the joint-space ``path``, checked
+        at the points :meth:`segment_valid` checks (:data:`MARGIN_M` when nothing is nearer;
+        the query's own clearance is not used). Stops at the first point nearer than
+        ``stop_below``. One pass answers "valid at c?" for every c (``>= c``), where
+        :meth:`path_valid` needs one pass per clearance."""
+        best = MARGIN_M
+        for a, b in zip(path, path[1:], strict=False):
+            n = max(1, int(np.ceil(np.linalg.norm(b - a) / step)))
+            for i in range(n + 1):
+                q = a + (i / n) * (b - a)
+                best = min(best, self.nearest(self.split(query.hands, q), query)[0])
+                if best < stop_below:
+                    return best
+        return best
+
 
 def _seen(need: float) -> float:
     """``need`` [m], a clearance the checks can see (not beyond :data:`MARGIN_M`)."""
