@@ -92,6 +92,27 @@ def test_baxter_grasp_candidates_include_points_away_from_the_shared_joint() -> 
     assert _fractions(world, "right", "L3") == {0.5, 0.75, 0.35}
 
 
+def test_baxter_tier_two_has_shallow_grasps_nearer_the_fingertips() -> None:
+    """The last poses of tier 2 are tier 1's (same points, approaches and finger ways) with
+    the link SHALLOW_M nearer the fingertips: the hand SHALLOW_M further back."""
+    from artiplan.world.grasping import SHALLOW_M
+
+    obj = ArticulatedObject(4)
+    conf = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
+    world = make_world(obj, conf, hands="baxter")
+    hands = world.hands
+    hands.assign("L2", "L3")
+    for hand, link in (("left", "L2"), ("right", "L3")):
+        poses = hands.grasp_poses(hand, link)
+        first = hands.tier_size(link)
+        deep, shallow = poses[:first], poses[-first:]
+        for (p1, q1), (p2, q2) in zip(deep, shallow, strict=True):
+            np.testing.assert_allclose(q1, q2)
+            z = np.empty(9)
+            mujoco.mju_quat2Mat(z, q1)
+            np.testing.assert_allclose(p2 - p1, -SHALLOW_M * z.reshape(3, 3)[:, 2], atol=1e-12)
+
+
 def test_baxter_assign_picks_the_pairing_in_which_both_hands_reach(monkeypatch) -> None:
     """The right hand is made unable to reach L3 (every candidate 2 cm short): the pairing
     left-holds/right-rotates is then refused although its scores are otherwise as good."""

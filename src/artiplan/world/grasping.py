@@ -51,6 +51,12 @@ CENTRE, OFF_CENTRE = 0.5, 0.25
 #: at 0.25 the rotation's tracking diverged, world.md).
 TILT_DEG = 30.0
 NEAR_PIVOT = 0.35
+#: Tier 2 also has shallow grasps: the tier-1 points and approaches with the link this much
+#: [m] nearer the fingertips (its axis 4 mm inside their ends, the pads still on its near
+#: half). The gripper base is then 14 mm from the link instead of 4 mm and the fingertips stop
+#: inside it: in folded 6-link chains Baxter's grasps of L3/L5 met the neighbouring link with
+#: the base or a fingertip 5-17 mm deep (143 refusals in 20 tasks, RESULTS.md, session 15).
+SHALLOW_M = 0.010
 #: Pull of the IK's null-space term toward mid-range joint angles [rad per iteration].
 NULLSPACE_GAIN = 0.05
 #: The same while tracking, called every 2 ms step: small, or the arm's self-motion outruns
@@ -188,18 +194,21 @@ class GraspChoice:
         """Candidate hand poses on ``link``. Tier 1 (the first :meth:`tier_size`): at each of
         :meth:`grasp_fractions`, the hand's z axis (its approach) perpendicular to the link,
         turned about it in ``n_turns`` steps, x along +-link. Tier 2: the same points with the
-        approach axis tilted TILT_DEG either way along the link, and :meth:`extra_fractions`
-        perpendicular. Consecutive poses differ by half a turn about the hand's axis."""
+        approach axis tilted TILT_DEG either way along the link, :meth:`extra_fractions`
+        perpendicular, and the tier-1 poses SHALLOW_M shallower (the link nearer the
+        fingertips). Consecutive poses differ by half a turn about the hand's axis."""
         b = self.model.body(link).id
         u = -self.data.xmat[b].reshape(3, 3)[:, 2]
         length = 2.0 * float(self.model.geom(f"{link}_geom").size[1])
         shoulder = self.data.xpos[self.model.body(f"baxter_{hand}_upper_shoulder").id]
         tilt = np.radians(TILT_DEG)
-        sets = [(f, 0.0) for f in self.grasp_fractions(link)]
-        sets += [(f, t) for t in (tilt, -tilt) for f in self.grasp_fractions(link)]
-        sets += [(f, 0.0) for f in self.extra_fractions(link)]
+        deep = self._depth
+        sets = [(f, 0.0, deep) for f in self.grasp_fractions(link)]
+        sets += [(f, t, deep) for t in (tilt, -tilt) for f in self.grasp_fractions(link)]
+        sets += [(f, 0.0, deep) for f in self.extra_fractions(link)]
+        sets += [(f, 0.0, deep + SHALLOW_M) for f in self.grasp_fractions(link)]
         poses = []
-        for f, t in sets:
+        for f, t, depth in sets:
             point = self.data.xpos[b] + f * length * u
             z0 = point - shoulder
             z0 -= np.dot(z0, u) * u
@@ -216,7 +225,7 @@ class GraspChoice:
                     mat = np.column_stack([x, np.cross(z, x), z])
                     quat = np.empty(4)
                     mujoco.mju_mat2Quat(quat, mat.ravel())
-                    poses.append((point - self._depth * z, quat))
+                    poses.append((point - depth * z, quat))
         return poses
 
     def tier_size(self, link: str, n_turns: int = 8) -> int:
