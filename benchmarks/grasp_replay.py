@@ -22,7 +22,7 @@ from pathlib import Path
 from typing import Any
 
 from artiplan.model import ArticulatedObject, Configuration
-from artiplan.world import grasping, make_world
+from artiplan.world import grasping, make_world, pairs
 from artiplan.world.pairs import NotExecutableError
 
 ACTION = re.compile(r"\(start-(?:increase|decrease) (L\d+) (L\d+) ")
@@ -55,10 +55,10 @@ def main() -> None:
     ap.add_argument("--max", type=int, default=40, help="cases at most (spread over the logs)")
     ap.add_argument("--links", type=int, default=6)
     ap.add_argument("--no-shallow", action="store_true",
-                    help="without the shallow grasps (SHALLOW_M = 0: tier 1's poses again)")
+                    help="without the shallow grasps (tiers 1-2 only)")
     args = ap.parse_args()
-    if args.no_shallow:
-        grasping.SHALLOW_M = 0.0
+    if args.no_shallow:  # the shallow grasps are tier 3: stop at tier 2
+        grasping.TIERS = pairs.TIERS = 2
     every = [c for root in args.logs for c in cases(root)]
     step = max(1, len(every) // args.max)
     chosen = every[::step][: args.max]

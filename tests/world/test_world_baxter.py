@@ -92,9 +92,9 @@ def test_baxter_grasp_candidates_include_points_away_from_the_shared_joint() -> 
     assert _fractions(world, "right", "L3") == {0.5, 0.75, 0.35}
 
 
-def test_baxter_tier_two_has_shallow_grasps_nearer_the_fingertips() -> None:
-    """The last poses of tier 2 are tier 1's (same points, approaches and finger ways) with
-    the link SHALLOW_M nearer the fingertips: the hand SHALLOW_M further back."""
+def test_baxter_tier_three_has_shallow_grasps_nearer_the_fingertips() -> None:
+    """Tier 3's poses are tier 1's (same points, approaches and finger ways) with the link
+    SHALLOW_M nearer the fingertips: the hand SHALLOW_M further back."""
     from artiplan.world.grasping import SHALLOW_M
 
     obj = ArticulatedObject(4)
@@ -105,7 +105,8 @@ def test_baxter_tier_two_has_shallow_grasps_nearer_the_fingertips() -> None:
     for hand, link in (("left", "L2"), ("right", "L3")):
         poses = hands.grasp_poses(hand, link)
         first = hands.tier_size(link)
-        deep, shallow = poses[:first], poses[-first:]
+        assert hands.tier_end(link, 3) == len(poses)
+        deep, shallow = poses[:first], poses[hands.tier_end(link, 2):]
         for (p1, q1), (p2, q2) in zip(deep, shallow, strict=True):
             np.testing.assert_allclose(q1, q2)
             z = np.empty(9)

@@ -51,12 +51,15 @@ CENTRE, OFF_CENTRE = 0.5, 0.25
 #: at 0.25 the rotation's tracking diverged, world.md).
 TILT_DEG = 30.0
 NEAR_PIVOT = 0.35
-#: Tier 2 also has shallow grasps: the tier-1 points and approaches with the link this much
-#: [m] nearer the fingertips (its axis 4 mm inside their ends, the pads still on its near
-#: half). The gripper base is then 14 mm from the link instead of 4 mm and the fingertips stop
-#: inside it: in folded 6-link chains Baxter's grasps of L3/L5 met the neighbouring link with
-#: the base or a fingertip 5-17 mm deep (143 refusals in 20 tasks, RESULTS.md, session 15).
+#: Tier 3 (tried when tiers 1-2 give no collision-free pair): shallow grasps, the tier-1
+#: points and approaches with the link this much [m] nearer the fingertips (its axis 4 mm
+#: inside their ends, the pads still on its near half). The gripper base is then 14 mm from
+#: the link instead of 4 mm and the fingertips stop inside it: in folded 6-link chains
+#: Baxter's grasps of L3/L5 met a neighbouring link with the base or a fingertip 5-17 mm deep
+#: (143 refusals in 20 tasks, RESULTS.md, session 15).
 SHALLOW_M = 0.010
+#: The last tier.
+TIERS = 3
 #: Pull of the IK's null-space term toward mid-range joint angles [rad per iteration].
 NULLSPACE_GAIN = 0.05
 #: The same while tracking, called every 2 ms step: small, or the arm's self-motion outruns
@@ -194,8 +197,8 @@ class GraspChoice:
         """Candidate hand poses on ``link``. Tier 1 (the first :meth:`tier_size`): at each of
         :meth:`grasp_fractions`, the hand's z axis (its approach) perpendicular to the link,
         turned about it in ``n_turns`` steps, x along +-link. Tier 2: the same points with the
-        approach axis tilted TILT_DEG either way along the link, :meth:`extra_fractions`
-        perpendicular, and the tier-1 poses SHALLOW_M shallower (the link nearer the
+        approach axis tilted TILT_DEG either way along the link, and :meth:`extra_fractions`
+        perpendicular. Tier 3: the tier-1 poses SHALLOW_M shallower (the link nearer the
         fingertips). Consecutive poses differ by half a turn about the hand's axis."""
         b = self.model.body(link).id
         u = -self.data.xmat[b].reshape(3, 3)[:, 2]
@@ -229,23 +232,34 @@ class GraspChoice:
         return poses
 
     def tier_size(self, link: str, n_turns: int = 8) -> int:
-        """How many of :meth:`grasp_poses` are tier 1."""
+        """How many of :meth:`grasp_poses` are tier 1 (and tier 3)."""
         return 2 * n_turns * len(self.grasp_fractions(link))
 
+    def tier_end(self, link: str, tier: int, n_turns: int = 8) -> int:
+        """How many of :meth:`grasp_poses` are in tiers 1 to ``tier`` (0 for tier 0)."""
+        if tier <= 0:
+            return 0
+        if tier == 1:
+            return self.tier_size(link, n_turns)
+        tilted = 2 * 2 * n_turns * len(self.grasp_fractions(link))
+        extra = 2 * n_turns * len(self.extra_fractions(link))
+        end = self.tier_size(link, n_turns) + tilted + extra
+        return end if tier == 2 else end + self.tier_size(link, n_turns)
+
     def candidates(self, hand: str, link: str, tier: int = 1) -> list[Candidate]:
-        """The candidate grasps of ``link`` by ``hand`` (tier 1, or tiers 1 and 2: see
+        """The candidate grasps of ``link`` by ``hand`` in tiers 1 to ``tier`` (see
         :meth:`grasp_poses`), solved and scored, best first (the other arm ignored: the pair
-        is checked in :mod:`artiplan.world.pairs`). Cached per state."""
+        is checked in :mod:`artiplan.world.pairs`). Cached per state and tier; a tier adds
+        its own poses to the tier before's candidates."""
         key = (hand, link, self._roles, self.data.time, self.data.qpos.tobytes())
-        first = self._cand_cache.get((*key, 1))
-        cached = self._cand_cache.get((*key, tier)) or (first if tier == 1 else None)
+        cached = self._cand_cache.get((*key, tier))
         if cached is not None:
             return cached
+        before = self.candidates(hand, link, tier - 1) if tier > 1 else []
         poses = self.grasp_poses(hand, link)
-        start = 0 if first is None else self.tier_size(link)
-        out = self._solve_candidates(hand, link, poses, start, self.tier_size(link)
-                                     if tier == 1 else len(poses))
-        out = sorted((first or []) + out, key=lambda c: c.score)
+        out = self._solve_candidates(hand, link, poses, self.tier_end(link, tier - 1),
+                                     self.tier_end(link, tier))
+        out = sorted(before + out, key=lambda c: c.score)
         self._cand_cache[(*key, tier)] = out
         while len(self._cand_cache) > 16:  # only the current motion's grasps matter
             self._cand_cache.pop(next(iter(self._cand_cache)))

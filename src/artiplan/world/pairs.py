@@ -29,6 +29,7 @@ from artiplan.world.grasping import (
     LIMIT_MARGIN,
     REACH_TOLERANCE,
     SWEEP_WEIGHT,
+    TIERS,
     TRACK_NULLSPACE_GAIN,
     Candidate,
     GraspChoice,
@@ -311,14 +312,14 @@ class PairChoice(GraspChoice):
         best ``keep``). Without ``avoid_collisions``: the best one, unchecked."""
         first, examined = "", 0
         met: frozenset[int] | None = frozenset()
-        for tier in (1, 2):
+        for tier in range(1, TIERS + 1):
             if tier < tiers:
                 continue  # the pair needs the wider set: start with it
             cands = self.candidates(hand, link, tier)
             reachable = [c for c in cands if c.reachable]
             if not self.avoid_collisions or not reachable:
-                if tier == 1 and self.avoid_collisions:
-                    continue  # none reaches: maybe a tilted grasp does
+                if tier < TIERS and self.avoid_collisions:
+                    continue  # none reaches: maybe a tilted or shallow grasp does
                 best = min(cands, key=lambda c: c.total)
                 if rotating and best.reachable and not best.sweep:
                     self._sweep(best)
@@ -372,10 +373,13 @@ class PairChoice(GraspChoice):
         (SHORT_WEIGHT per share of the turn missed), if at least :func:`min_turn`;
         (inf, None, None, why, -1) when there is none."""
         out = self._plan_pair(hold_hand, hold_link, rot_hand, rot_link, turn, 1)
-        if out[2] is None or out[4] < (turn.degrees if turn is not None else np.inf):
-            again = self._plan_pair(hold_hand, hold_link, rot_hand, rot_link, turn, 2)
+        full = turn.degrees if turn is not None else np.inf
+        for tiers in range(2, TIERS + 1):  # a wider set only while no pair does the whole turn
+            if out[2] is not None and out[4] >= full:
+                break
+            again = self._plan_pair(hold_hand, hold_link, rot_hand, rot_link, turn, tiers)
             if again[2] is not None and (out[2] is None or again[0] < out[0]):
-                return again
+                out = again
         return out
 
     def _plan_pair(
