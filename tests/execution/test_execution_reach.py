@@ -3,6 +3,7 @@ the loop's PDDL+ problems; the problem starts with the hands away."""
 
 from __future__ import annotations
 
+import math
 import re
 
 import pytest
@@ -84,13 +85,14 @@ def test_a_final_leg_near_another_link_is_slowed(monkeypatch) -> None:  # type: 
         runs.append((path.duration, path.natural))
         return follow(self, hands, path, advance, settle_s)
 
-    valid = ArmChecker.path_valid
+    clearance = ArmChecker.path_clearance
 
-    def near(self, path, query):  # type: ignore[no-untyped-def]
-        return query.clearance != approach.SLOW_NEAR_M and valid(self, path, query)
+    def near(self, path, query, stop_below=-math.inf):  # type: ignore[no-untyped-def]
+        # collision-free, but within SLOW_NEAR_M of something
+        return min(clearance(self, path, query, stop_below), 0.5 * approach.SLOW_NEAR_M)
 
     monkeypatch.setattr(approach.ApproachMotion, "_run", run)
-    monkeypatch.setattr(ArmChecker, "path_valid", near)
+    monkeypatch.setattr(ArmChecker, "path_clearance", near)
     measure_reach(make_world, ArticulatedObject(4), approach_s=0.4, repeats=1)
     duration, natural = runs[-1]
     assert natural < approach.FINAL_LEG_MIN_S
