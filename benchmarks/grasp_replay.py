@@ -8,7 +8,7 @@ The arms start at home, not where the run had them, so a replay is a proxy: it t
 grasps against the object, the scene and each other, not the way the arms got there.
 
 Usage: .venv/bin/python benchmarks/grasp_replay.py LOGDIR [LOGDIR ...] [--max 40]
-       [--no-shallow] [--links 6]
+       [--no-shallow | --shallow-m M] [--turns N] [--more-points F,F] [--links 6]
 Prints one line per case (free or why not) and the count of pairs found.
 """
 
@@ -49,6 +49,28 @@ def cases(root: Path) -> list[tuple[str, str, str, Configuration]]:
     return out
 
 
+def variant(args: argparse.Namespace) -> None:
+    """Patch the grasp choice for a variant (experiments only: nothing here is the product)."""
+    choice = grasping.GraspChoice
+    if args.no_shallow:  # the shallow grasps are tier 3: stop at tier 2
+        grasping.TIERS = pairs.TIERS = 2  # type: ignore[misc]
+    if args.shallow_m is not None:
+        grasping.SHALLOW_M = args.shallow_m  # type: ignore[misc]
+    if args.turns != 8:
+        n = args.turns
+        for name, keep in (("grasp_poses", 2), ("tier_size", 1), ("tier_end", 2)):
+            real = getattr(choice, name)  # drop any n_turns given: always n
+
+            def fixed(self, *a, _real=real, _keep=keep, **_k):  # type: ignore[no-untyped-def]
+                return _real(self, *a[:_keep], n_turns=n)
+
+            setattr(choice, name, fixed)
+    if args.more_points:
+        more = tuple(float(f) for f in args.more_points.split(","))
+        real_f = choice.grasp_fractions
+        choice.grasp_fractions = lambda self, link: real_f(self, link) + more  # type: ignore
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("logs", type=Path, nargs="+")
@@ -56,9 +78,13 @@ def main() -> None:
     ap.add_argument("--links", type=int, default=6)
     ap.add_argument("--no-shallow", action="store_true",
                     help="without the shallow grasps (tiers 1-2 only)")
+    ap.add_argument("--shallow-m", type=float, default=None, help="grasping.SHALLOW_M [m]")
+    ap.add_argument("--turns", type=int, default=8,
+                    help="approach directions about the link per grasp point")
+    ap.add_argument("--more-points", default="",
+                    help="more tier-1 grasp points on both links [fractions from the base joint]")
     args = ap.parse_args()
-    if args.no_shallow:  # the shallow grasps are tier 3: stop at tier 2
-        grasping.TIERS = pairs.TIERS = 2
+    variant(args)
     every = [c for root in args.logs for c in cases(root)]
     step = max(1, len(every) // args.max)
     chosen = every[::step][: args.max]
