@@ -8,7 +8,7 @@ The arms start at home, not where the run had them, so a replay is a proxy: it t
 grasps against the object, the scene and each other, not the way the arms got there.
 
 Usage: .venv/bin/python benchmarks/grasp_replay.py LOGDIR [LOGDIR ...] [--max 40]
-       [--no-shallow | --shallow-m M] [--turns N] [--more-points F,F] [--links 6]
+       [--tiers N] [--shallow-m M] [--turns N] [--more-points F,F] [--links 6]
 Prints one line per case (free or why not) and the count of pairs found.
 """
 
@@ -52,8 +52,8 @@ def cases(root: Path) -> list[tuple[str, str, str, Configuration]]:
 def variant(args: argparse.Namespace) -> None:
     """Patch the grasp choice for a variant (experiments only: nothing here is the product)."""
     choice = grasping.GraspChoice
-    if args.no_shallow:  # the shallow grasps are tier 3: stop at tier 2
-        grasping.TIERS = pairs.TIERS = 2  # type: ignore[misc]
+    if args.tiers is not None:  # stop at that tier (grasping.grasp_poses: what each adds)
+        grasping.TIERS = pairs.TIERS = args.tiers  # type: ignore[misc]
     if args.shallow_m is not None:
         grasping.SHALLOW_M = args.shallow_m  # type: ignore[misc]
     if args.turns != 8:
@@ -76,8 +76,8 @@ def main() -> None:
     ap.add_argument("logs", type=Path, nargs="+")
     ap.add_argument("--max", type=int, default=40, help="cases at most (spread over the logs)")
     ap.add_argument("--links", type=int, default=6)
-    ap.add_argument("--no-shallow", action="store_true",
-                    help="without the shallow grasps (tiers 1-2 only)")
+    ap.add_argument("--tiers", type=int, default=None,
+                    help="grasp tiers 1 to N only (default: all, grasping.TIERS)")
     ap.add_argument("--shallow-m", type=float, default=None, help="grasping.SHALLOW_M [m]")
     ap.add_argument("--turns", type=int, default=8,
                     help="approach directions about the link per grasp point")
@@ -103,7 +103,7 @@ def main() -> None:
         print(f"{name} hold {hold} turn {rot}: {why} ({time.perf_counter() - t:.1f} s)",
               flush=True)
     print(f"{free}/{len(chosen)} pairs found ({len(every)} static refusals in the logs; "
-          f"{time.perf_counter() - t0:.0f} s wall, shallow {'off' if args.no_shallow else 'on'})")
+          f"{time.perf_counter() - t0:.0f} s wall, tiers {args.tiers or grasping.TIERS})")
 
 
 if __name__ == "__main__":

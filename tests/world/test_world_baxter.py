@@ -88,25 +88,30 @@ def test_baxter_grasp_candidates_include_points_away_from_the_shared_joint() -> 
     # tier 1 has no collision-free pair) adds a point on the other side and tilted approaches.
     assert _fractions(world, "left", "L2", first) == {0.5, 0.25}
     assert _fractions(world, "right", "L3", hands.tier_size("L3")) == {0.5, 0.75}
-    assert _fractions(world, "left", "L2") == {0.5, 0.25, 0.75}
-    assert _fractions(world, "right", "L3") == {0.5, 0.75, 0.35}
+    assert _fractions(world, "left", "L2", hands.tier_end("L2", 2)) == {0.5, 0.25, 0.75}
+    assert _fractions(world, "right", "L3", hands.tier_end("L3", 2)) == {0.5, 0.75, 0.35}
 
 
-def test_baxter_tier_three_has_shallow_grasps_nearer_the_fingertips() -> None:
-    """Tier 3's poses are tier 1's (same points, approaches and finger ways) with the link
-    SHALLOW_M nearer the fingertips: the hand SHALLOW_M further back."""
-    from artiplan.world.grasping import SHALLOW_M
+def test_baxter_tier_three_grasps_near_the_ends_and_tier_four_shallower() -> None:
+    """Tier 3 grasps near the links' ends (both ends of the held link, the far end of the
+    rotated one); tier 4's poses are tier 1's (same points, approaches and finger ways) with
+    the link SHALLOW_M nearer the fingertips: the hand SHALLOW_M further back."""
+    from artiplan.world.grasping import END_NEAR, SHALLOW_M
 
     obj = ArticulatedObject(4)
     conf = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
     world = make_world(obj, conf, hands="baxter")
     hands = world.hands
     hands.assign("L2", "L3")
+    ends = {"L2": {END_NEAR, 1 - END_NEAR}, "L3": {1 - END_NEAR}}
     for hand, link in (("left", "L2"), ("right", "L3")):
         poses = hands.grasp_poses(hand, link)
         first = hands.tier_size(link)
-        assert hands.tier_end(link, 3) == len(poses)
-        deep, shallow = poses[:first], poses[hands.tier_end(link, 2):]
+        assert hands.tier_end(link, 4) == len(poses)
+        tier3 = (hands.tier_end(link, 2), hands.tier_end(link, 3))
+        assert _fractions(world, hand, link, tier3[1]) - _fractions(
+            world, hand, link, tier3[0]) == ends[link]
+        deep, shallow = poses[:first], poses[tier3[1]:]
         for (p1, q1), (p2, q2) in zip(deep, shallow, strict=True):
             np.testing.assert_allclose(q1, q2)
             z = np.empty(9)

@@ -51,7 +51,14 @@ CENTRE, OFF_CENTRE = 0.5, 0.25
 #: at 0.25 the rotation's tracking diverged, world.md).
 TILT_DEG = 30.0
 NEAR_PIVOT = 0.35
-#: Tier 3 (tried when tiers 1-2 give no collision-free pair): shallow grasps, the tier-1
+#: Tier 3 (tried when tiers 1-2 give no collision-free pair): points near the link's ends,
+#: END_NEAR of its length from a joint: both ends of the held link, the far end of the rotated
+#: one (not near its pivot: the turn's tracking diverged there, world.md). Replayed on 30
+#: static refusals of 6-link runs (benchmarks/grasp_replay.py), points at 0.15 and 0.85 on
+#: both links found a pair for 24 where tiers 1-2 found 6: in a folded chain the links beside
+#: a link's middle leave no room for Baxter's gripper, its ends do.
+END_NEAR = 0.15
+#: Tier 4 (tried when tiers 1-3 give none): shallow grasps, the tier-1
 #: points and approaches with the link this much [m] nearer the fingertips (its axis 4 mm
 #: inside their ends, the pads still on its near half). The gripper base is then 14 mm from
 #: the link instead of 4 mm and the fingertips stop inside it: in folded 6-link chains
@@ -59,7 +66,7 @@ NEAR_PIVOT = 0.35
 #: (143 refusals in 20 tasks, RESULTS.md, session 15).
 SHALLOW_M = 0.010
 #: The last tier.
-TIERS = 3
+TIERS = 4
 #: Pull of the IK's null-space term toward mid-range joint angles [rad per iteration].
 NULLSPACE_GAIN = 0.05
 #: The same while tracking, called every 2 ms step: small, or the arm's self-motion outruns
@@ -193,13 +200,21 @@ class GraspChoice:
             return (NEAR_PIVOT,)
         return ()
 
+    def end_fractions(self, link: str) -> tuple[float, ...]:
+        """Grasp points near ``link``'s ends (tier 3): not near the rotated link's pivot."""
+        hold, rotate = self._roles
+        if link == rotate:
+            return (1.0 - END_NEAR,)
+        return (END_NEAR, 1.0 - END_NEAR)
+
     def grasp_poses(self, hand: str, link: str, n_turns: int = 8) -> list[tuple[Vec, Vec]]:
         """Candidate hand poses on ``link``. Tier 1 (the first :meth:`tier_size`): at each of
         :meth:`grasp_fractions`, the hand's z axis (its approach) perpendicular to the link,
         turned about it in ``n_turns`` steps, x along +-link. Tier 2: the same points with the
         approach axis tilted TILT_DEG either way along the link, and :meth:`extra_fractions`
-        perpendicular. Tier 3: the tier-1 poses SHALLOW_M shallower (the link nearer the
-        fingertips). Consecutive poses differ by half a turn about the hand's axis."""
+        perpendicular. Tier 3: :meth:`end_fractions` perpendicular. Tier 4: the tier-1
+        poses SHALLOW_M shallower (the link nearer the fingertips).
+        Consecutive poses differ by half a turn about the hand's axis."""
         b = self.model.body(link).id
         u = -self.data.xmat[b].reshape(3, 3)[:, 2]
         length = 2.0 * float(self.model.geom(f"{link}_geom").size[1])
@@ -209,6 +224,7 @@ class GraspChoice:
         sets = [(f, 0.0, deep) for f in self.grasp_fractions(link)]
         sets += [(f, t, deep) for t in (tilt, -tilt) for f in self.grasp_fractions(link)]
         sets += [(f, 0.0, deep) for f in self.extra_fractions(link)]
+        sets += [(f, 0.0, deep) for f in self.end_fractions(link)]
         sets += [(f, 0.0, deep + SHALLOW_M) for f in self.grasp_fractions(link)]
         poses = []
         for f, t, depth in sets:
@@ -232,7 +248,7 @@ class GraspChoice:
         return poses
 
     def tier_size(self, link: str, n_turns: int = 8) -> int:
-        """How many of :meth:`grasp_poses` are tier 1 (and tier 3)."""
+        """How many of :meth:`grasp_poses` are tier 1 (and tier 4)."""
         return 2 * n_turns * len(self.grasp_fractions(link))
 
     def tier_end(self, link: str, tier: int, n_turns: int = 8) -> int:
@@ -244,7 +260,9 @@ class GraspChoice:
         tilted = 2 * 2 * n_turns * len(self.grasp_fractions(link))
         extra = 2 * n_turns * len(self.extra_fractions(link))
         end = self.tier_size(link, n_turns) + tilted + extra
-        return end if tier == 2 else end + self.tier_size(link, n_turns)
+        if tier >= 3:
+            end += 2 * n_turns * len(self.end_fractions(link))
+        return end + (self.tier_size(link, n_turns) if tier >= 4 else 0)
 
     def candidates(self, hand: str, link: str, tier: int = 1) -> list[Candidate]:
         """The candidate grasps of ``link`` by ``hand`` in tiers 1 to ``tier`` (see
