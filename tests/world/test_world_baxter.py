@@ -69,7 +69,7 @@ def _fractions(world, hand: str, link: str, first: int | None = None) -> set[flo
     b = world.model.body(link).id
     base, u = world.data.xpos[b], -world.data.xmat[b].reshape(3, 3)[:, 2]
     out = set()
-    for pos, quat in hands.grasp_poses(hand, link)[:first]:
+    for pos, quat in hands.grasp_poses(hand, link, tiers=4)[:first]:
         mat = np.empty(9)
         mujoco.mju_quat2Mat(mat, quat)
         point = pos + hands._depth * mat.reshape(3, 3)[:, 2]  # between the finger pads
@@ -105,9 +105,10 @@ def test_baxter_tier_three_grasps_near_the_ends_and_tier_four_shallower() -> Non
     hands.assign("L2", "L3")
     ends = {"L2": {END_NEAR, 1 - END_NEAR}, "L3": {1 - END_NEAR}}
     for hand, link in (("left", "L2"), ("right", "L3")):
-        poses = hands.grasp_poses(hand, link)
+        poses = hands.grasp_poses(hand, link, tiers=4)
         first = hands.tier_size(link)
         assert hands.tier_end(link, 4) == len(poses)
+        assert hands.tier_end(link, 2) == len(hands.grasp_poses(hand, link, tiers=2))
         tier3 = (hands.tier_end(link, 2), hands.tier_end(link, 3))
         assert _fractions(world, hand, link, tier3[1]) - _fractions(
             world, hand, link, tier3[0]) == ends[link]

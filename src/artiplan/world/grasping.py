@@ -65,8 +65,11 @@ END_NEAR = 0.15
 #: Baxter's grasps of L3/L5 met a neighbouring link with the base or a fingertip 5-17 mm deep
 #: (143 refusals in 20 tasks, RESULTS.md, session 15).
 SHALLOW_M = 0.010
-#: The last tier.
-TIERS = 4
+#: The last tier tried. Tiers 3-4 are off: in the closed loop they cut 6-link static refusals
+#: from 143 to 93 in 20 tasks but reached no more tasks (7/20), and they cost the demo 7% more
+#: wall time (39.1 against 36.4 s, quiet, the same run). benchmarks/grasp_replay.py --tiers 4
+#: and setting this to 4 (pairs.py reads it too) try them.
+TIERS = 2
 #: Pull of the IK's null-space term toward mid-range joint angles [rad per iteration].
 NULLSPACE_GAIN = 0.05
 #: The same while tracking, called every 2 ms step: small, or the arm's self-motion outruns
@@ -207,14 +210,16 @@ class GraspChoice:
             return (1.0 - END_NEAR,)
         return (END_NEAR, 1.0 - END_NEAR)
 
-    def grasp_poses(self, hand: str, link: str, n_turns: int = 8) -> list[tuple[Vec, Vec]]:
+    def grasp_poses(self, hand: str, link: str, n_turns: int = 8,
+                    tiers: int | None = None) -> list[tuple[Vec, Vec]]:
         """Candidate hand poses on ``link``. Tier 1 (the first :meth:`tier_size`): at each of
         :meth:`grasp_fractions`, the hand's z axis (its approach) perpendicular to the link,
         turned about it in ``n_turns`` steps, x along +-link. Tier 2: the same points with the
         approach axis tilted TILT_DEG either way along the link, and :meth:`extra_fractions`
         perpendicular. Tier 3: :meth:`end_fractions` perpendicular. Tier 4: the tier-1
         poses SHALLOW_M shallower (the link nearer the fingertips).
-        Consecutive poses differ by half a turn about the hand's axis."""
+        Only tiers 1 to ``tiers`` (default :data:`TIERS`). Consecutive poses differ by half a
+        turn about the hand's axis."""
         b = self.model.body(link).id
         u = -self.data.xmat[b].reshape(3, 3)[:, 2]
         length = 2.0 * float(self.model.geom(f"{link}_geom").size[1])
@@ -224,8 +229,11 @@ class GraspChoice:
         sets = [(f, 0.0, deep) for f in self.grasp_fractions(link)]
         sets += [(f, t, deep) for t in (tilt, -tilt) for f in self.grasp_fractions(link)]
         sets += [(f, 0.0, deep) for f in self.extra_fractions(link)]
-        sets += [(f, 0.0, deep) for f in self.end_fractions(link)]
-        sets += [(f, 0.0, deep + SHALLOW_M) for f in self.grasp_fractions(link)]
+        tiers = TIERS if tiers is None else tiers
+        if tiers >= 3:
+            sets += [(f, 0.0, deep) for f in self.end_fractions(link)]
+        if tiers >= 4:
+            sets += [(f, 0.0, deep + SHALLOW_M) for f in self.grasp_fractions(link)]
         poses = []
         for f, t, depth in sets:
             point = self.data.xpos[b] + f * length * u
