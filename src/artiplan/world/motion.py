@@ -20,7 +20,7 @@ import copy
 import functools
 import math
 import time
-from collections.abc import Callable
+from collections.abc import Callable, Iterator
 from dataclasses import dataclass, field
 
 import mujoco
@@ -218,12 +218,8 @@ class ArmChecker:
     def segment_valid(self, a: Vec, b: Vec, query: Query, step: float = CHECK_STEP_RAD) -> bool:
         """Whether the straight joint-space segment a -> b keeps the clearance at every
         ``step`` [rad] (ends included)."""
-        n = max(1, int(np.ceil(np.linalg.norm(b - a) / step)))
-        for i in range(n + 1):
-            q = a + (i / n) * (b - a)
-            if not self.valid(self.split(query.hands, q), query, q):
-                return False
-        return True
+        return all(self.valid(self.split(query.hands, q), query, q)
+                   for q in segment_points(a, b, step))
 
     def path_valid(self, path: list[Vec], query: Query) -> bool:
         return all(self.segment_valid(a, b, query) for a, b in zip(path, path[1:], strict=False))
@@ -237,13 +233,19 @@ class ArmChecker:
         :meth:`path_valid` needs one pass per clearance."""
         best = MARGIN_M
         for a, b in zip(path, path[1:], strict=False):
-            n = max(1, int(np.ceil(np.linalg.norm(b - a) / step)))
-            for i in range(n + 1):
-                q = a + (i / n) * (b - a)
+            for q in segment_points(a, b, step):
                 best = min(best, self.nearest(self.split(query.hands, q), query)[0])
                 if best < stop_below:
                     return best
         return best
+
+
+def segment_points(a: Vec, b: Vec, step: float = CHECK_STEP_RAD) -> Iterator[Vec]:
+    """The configurations a segment a -> b is checked at: every ``step`` [rad] or less, ends
+    included (:meth:`ArmChecker.segment_valid`, :meth:`ArmChecker.path_clearance`)."""
+    n = max(1, int(np.ceil(np.linalg.norm(b - a) / step)))
+    for i in range(n + 1):
+        yield a + (i / n) * (b - a)
 
 
 def _seen(need: float) -> float:
