@@ -61,8 +61,9 @@ def variant(args: argparse.Namespace) -> None:
         for name, keep in (("grasp_poses", 2), ("tier_size", 1), ("tier_end", 2)):
             real = getattr(choice, name)  # drop any n_turns given: always n
 
-            def fixed(self, *a, _real=real, _keep=keep, **_k):  # type: ignore[no-untyped-def]
-                return _real(self, *a[:_keep], n_turns=n)
+            def fixed(self, *a, _real=real, _keep=keep, **k):  # type: ignore[no-untyped-def]
+                k.pop("n_turns", None)
+                return _real(self, *a[:_keep], n_turns=n, **k)
 
             setattr(choice, name, fixed)
     if args.more_points:

@@ -205,8 +205,7 @@ class GraspChoice:
 
     def end_fractions(self, link: str) -> tuple[float, ...]:
         """Grasp points near ``link``'s ends (tier 3): not near the rotated link's pivot."""
-        hold, rotate = self._roles
-        if link == rotate:
+        if link == self._roles[1]:
             return (1.0 - END_NEAR,)
         return (END_NEAR, 1.0 - END_NEAR)
 
@@ -224,16 +223,8 @@ class GraspChoice:
         u = -self.data.xmat[b].reshape(3, 3)[:, 2]
         length = 2.0 * float(self.model.geom(f"{link}_geom").size[1])
         shoulder = self.data.xpos[self.model.body(f"baxter_{hand}_upper_shoulder").id]
-        tilt = np.radians(TILT_DEG)
-        deep = self._depth
-        sets = [(f, 0.0, deep) for f in self.grasp_fractions(link)]
-        sets += [(f, t, deep) for t in (tilt, -tilt) for f in self.grasp_fractions(link)]
-        sets += [(f, 0.0, deep) for f in self.extra_fractions(link)]
-        tiers = TIERS if tiers is None else tiers
-        if tiers >= 3:
-            sets += [(f, 0.0, deep) for f in self.end_fractions(link)]
-        if tiers >= 4:
-            sets += [(f, 0.0, deep + SHALLOW_M) for f in self.grasp_fractions(link)]
+        sets = [s for tier in self._tier_sets(link)[: TIERS if tiers is None else tiers]
+                for s in tier]
         poses = []
         for f, t, depth in sets:
             point = self.data.xpos[b] + f * length * u
@@ -255,22 +246,26 @@ class GraspChoice:
                     poses.append((point - depth * z, quat))
         return poses
 
+    def _tier_sets(self, link: str) -> list[list[tuple[float, float, float]]]:
+        """Per tier (1 to 4), its (grasp point [fraction of the link], tilt of the approach
+        along the link [rad], depth of the grasp point from the hand [m]); each gives
+        ``n_turns`` approaches, either finger way (:meth:`grasp_poses`)."""
+        tilt, deep = np.radians(TILT_DEG), self._depth
+        return [
+            [(f, 0.0, deep) for f in self.grasp_fractions(link)],
+            [(f, t, deep) for t in (tilt, -tilt) for f in self.grasp_fractions(link)]
+            + [(f, 0.0, deep) for f in self.extra_fractions(link)],
+            [(f, 0.0, deep) for f in self.end_fractions(link)],
+            [(f, 0.0, deep + SHALLOW_M) for f in self.grasp_fractions(link)],
+        ]
+
     def tier_size(self, link: str, n_turns: int = 8) -> int:
-        """How many of :meth:`grasp_poses` are tier 1 (and tier 4)."""
-        return 2 * n_turns * len(self.grasp_fractions(link))
+        """How many of :meth:`grasp_poses` are tier 1."""
+        return self.tier_end(link, 1, n_turns)
 
     def tier_end(self, link: str, tier: int, n_turns: int = 8) -> int:
         """How many of :meth:`grasp_poses` are in tiers 1 to ``tier`` (0 for tier 0)."""
-        if tier <= 0:
-            return 0
-        if tier == 1:
-            return self.tier_size(link, n_turns)
-        tilted = 2 * 2 * n_turns * len(self.grasp_fractions(link))
-        extra = 2 * n_turns * len(self.extra_fractions(link))
-        end = self.tier_size(link, n_turns) + tilted + extra
-        if tier >= 3:
-            end += 2 * n_turns * len(self.end_fractions(link))
-        return end + (self.tier_size(link, n_turns) if tier >= 4 else 0)
+        return 2 * n_turns * sum(len(sets) for sets in self._tier_sets(link)[: max(0, tier)])
 
     def candidates(self, hand: str, link: str, tier: int = 1) -> list[Candidate]:
         """The candidate grasps of ``link`` by ``hand`` in tiers 1 to ``tier`` (see
@@ -282,7 +277,7 @@ class GraspChoice:
         if cached is not None:
             return cached
         before = self.candidates(hand, link, tier - 1) if tier > 1 else []
-        poses = self.grasp_poses(hand, link)
+        poses = self.grasp_poses(hand, link, tiers=tier)
         out = self._solve_candidates(hand, link, poses, self.tier_end(link, tier - 1),
                                      self.tier_end(link, tier))
         out = sorted(before + out, key=lambda c: c.score)
