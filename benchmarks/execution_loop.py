@@ -48,6 +48,9 @@ def main() -> None:
                     help="re-plan budget of a run (default: LoopConfig's)")
     ap.add_argument("--no-monitor-ahead", action="store_true",
                     help="judge every offset, also those a turn ahead aligns away")
+    ap.add_argument("--no-aim", action="store_true",
+                    help="plans aim at the target itself, not off it by what plans that "
+                         "ended short missed by (LoopConfig.aim)")
     ap.add_argument("--max-turn", type=float, default=None,
                     help="plans first sought with turns of at most this [deg] (0: never; "
                          "default: LoopConfig's)")
@@ -85,6 +88,8 @@ def main() -> None:
         config = replace(config, fallback_after=args.fallback_after)
     if args.no_monitor_ahead:
         config = replace(config, monitor_ahead=False)
+    if args.no_aim:
+        config = replace(config, aim=False)
     if args.max_turn is not None:
         config = replace(config, max_turn_deg=args.max_turn or None)
     if args.max_replans is not None:
@@ -115,7 +120,8 @@ def main() -> None:
                    "approach_s": args.approach, "reach_time": reach,
                    "compensate": not args.no_compensate, "carry": args.carry, "fall": args.fall,
                    "max_replans": config.max_replans, "monitor_ahead": config.monitor_ahead,
-                   "fallback": config.fallback_model, "max_turn_deg": config.max_turn_deg}
+                   "fallback": config.fallback_model, "max_turn_deg": config.max_turn_deg,
+                   "aim": config.aim}
             rows.append(row)
             if args.logs is not None:
                 args.logs.mkdir(parents=True, exist_ok=True)

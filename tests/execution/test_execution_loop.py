@@ -105,3 +105,31 @@ def test_plans_are_sought_with_short_turns_first() -> None:
     cfg = LoopConfig(EncodingOptions("ng"), max_turn_deg=60.0, capped_time_limit=1e-9)
     assert longest_turn(cfg, lines) > 90.0
     assert any("planning with longer ones" in line for line in lines)
+
+
+def test_a_plan_that_ends_short_moves_the_next_plans_aim() -> None:
+    """LoopConfig.aim: a plan that ends without the goal (here: an acceptance tighter than
+    execution can meet) makes the next plan of the same model aim each goal link's vertical
+    window off the target by minus what was missed there."""
+    from artiplan.execution.problem import canonical
+    from artiplan.model import Configuration
+    from artiplan.world import make_world
+
+    obj = ArticulatedObject(3)
+    init = Configuration((0.0, 0.0, 0.0), (90.0, 90.0, 90.0))
+    target = Configuration((0.0, 0.0, 100.0), (90.0, 90.0, 120.0))
+    cfg = LoopConfig(EncodingOptions("ng"), accept_deg=0.01, max_replans=1)
+    log = run_loop(make_world(obj, init, hands="virtual", seed=1), target, cfg, seed=1)
+    assert [r["reason"] for r in log.replans] == ["goal not reached at the final happening"]
+    assert log.plans[0]["aim"] == {}
+    aim = log.plans[1]["aim"]
+    assert aim, "the re-plan aims off the target"
+    start = canonical(conf_from(log.plans[1]["start"]))  # where plan 0 ended (a new percept)
+    for lk, off in aim.items():
+        i = obj.index(lk) - 1
+        missed = start.gamma[i] - canonical(target).gamma[i]  # L3 ends about 1.7 deg low
+        assert abs(missed) > 1.0
+        assert off == pytest.approx(-missed, abs=0.4)  # percept noise: a few tenths
+    off = LoopConfig(EncodingOptions("ng"), accept_deg=0.01, max_replans=1, aim=False)
+    log = run_loop(make_world(obj, init, hands="virtual", seed=1), target, off, seed=1)
+    assert log.plans[1]["aim"] == {}

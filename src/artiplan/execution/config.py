@@ -77,6 +77,9 @@ class LoopConfig:
             long as it likes used turns of up to 3 revolutions as clocks, waiting for gravity
             to bring carried goal links into their windows.
         capped_time_limit: See ``max_turn_deg``.
+        aim: After a plan ends without the goal, the next plans of the same model aim the goal
+            links' vertical-plane windows off the target by what that plan missed by
+            (``execution.aim``; on 6 links NG plans left goal links 4-5 deg low, sagging).
         compensate_approach: With hands that approach their grasps in simulated time and a
             ``reach_time`` in the encoding: plans start with the hands away (the first grasp
             waits ``reach_time`` too), each start is dispatched ``reach_time`` early, and the
@@ -107,6 +110,7 @@ class LoopConfig:
     monitor_ahead: bool = True
     max_turn_deg: float | None = 180.0
     capped_time_limit: float = 10.0
+    aim: bool = True
 
     def __post_init__(self) -> None:
         if self.threshold_deg <= 0 or self.accept_deg <= 0 or self.plan_tolerance_deg <= 0:

@@ -24,6 +24,7 @@ from artiplan.encoding import EncodingOptions, domain_pddl, make_goal
 from artiplan.encoding.domain import CLEAR_DEG
 from artiplan.encoding.options import Model
 from artiplan.encoding.problem import Ungraspable
+from artiplan.execution.aim import Aim
 from artiplan.execution.config import Intervention, LoopConfig
 from artiplan.execution.dispatch import (
     ActionFailed,
@@ -95,6 +96,9 @@ class ClosedLoop:
         self.replans = 0
         #: Rotations the world refused, planned around (:mod:`artiplan.execution.refusals`).
         self.refusals = Refusals()
+        #: Goal windows moved by the residuals of plans that ended short (execution.aim).
+        self.aim = Aim() if config.aim else None
+        self._final_conf: Configuration | None = None
         self.planner = get_planner(self.config.planner)
         #: Links carried by the vertical-plane rotation in progress (see Monitor.check).
         self.carried: frozenset[str] = frozenset()
@@ -145,6 +149,7 @@ class ClosedLoop:
                 if self._final_check() or not self._may_replan():
                     return
                 reason = "goal not reached at the final happening"
+                self._learn_aim()
                 self._fall_back()
             else:
                 reason = outcome
@@ -161,6 +166,19 @@ class ClosedLoop:
             self.replans += 1
             if self.replans >= self.config.fallback_after:
                 self._fall_back()
+
+    def _learn_aim(self) -> None:
+        """The plan just executed ended short of the goal: the next plans of its model aim
+        off the target by what it missed by (see :class:`artiplan.execution.aim.Aim`)."""
+        if self.aim is None or self._final_conf is None:
+            return
+        model = self.encoding.model
+        used = self.aim.observe(self.obj, model, self.target, self._final_conf, self.goal.links)
+        if used:
+            self.progress("aiming " + ", ".join(
+                f"{lk} {off:+.1f} deg" for lk, off in self.aim.of(model).items())
+                + f" on the vertical plane in the next {model.upper()} plans (residuals "
+                + ", ".join(f"{lk} {r:+.1f}" for lk, r in used.items()) + ")")
 
     def _turn_close(self) -> None:
         """The turn in progress (if any) ends now: the refusals it unlocks are unlocked when
@@ -272,6 +290,7 @@ class ClosedLoop:
         record: dict[str, Any] = {
             "index": index, "start_time": round(t0, 4), "reason": reason,
             "model": self.encoding.model,
+            "aim": self.aim.of(self.encoding.model) if self.aim is not None else {},
             "status": result.status.value, "latency_wall_s": round(latency, 4),
             "makespan": result.stats.get("makespan"), "start": conf_dict(start),
             "message": result.message,
@@ -362,7 +381,8 @@ class ClosedLoop:
         """The planner on ``enc``'s domain and the problem from ``start`` around ``avoid``,
         within ``limit`` [s] wall."""
         domain = self.domain if enc == self.encoding else domain_pddl(self.obj, enc)
-        problem = build_problem(self.obj, start, self.target, enc, self.goal,
+        goal = self.aim.goal(self.goal, enc.model) if self.aim is not None else self.goal
+        problem = build_problem(self.obj, start, self.target, enc, goal,
                                 hands_away=self.lead > 0.0, refused=avoid[0],
                                 ungraspable=avoid[1])
         return self.planner.plan(domain, problem, time_limit=limit)
@@ -546,6 +566,7 @@ class ClosedLoop:
         """Hold still, perceive, judge the goal (every goal link within ``accept_deg``)."""
         self.world.stop(release=False)
         percept = self.world.perceive()
+        self._final_conf = percept.configuration
         errs = goal_errors(self.obj, self.target, percept.configuration, self.goal.links)
         ok = all(e <= self.config.accept_deg for e in errs.values())
         self.log.final = {"time": round(self.world.time, 4),
