@@ -73,6 +73,9 @@ def test_a_diverging_physics_ends_the_run_as_failed() -> None:
     log = run_loop(world, target, LoopConfig(EncodingOptions("ng")), seed=4, observer=blow_up)
     assert not log.success
     assert "physics diverged" in log.final["error"]
+    # With clues to why: the joint MuJoCo flagged and how far the hands' servos had wound up.
+    assert "bad velocity of joint" in log.final["error"]
+    assert "servo integral" in log.final["error"]
     assert log.final["time"] == pytest.approx(when[0])  # not the reset clock
     assert all(b >= a for a, b in zip(seen, seen[1:], strict=False))  # time never went back
 

@@ -196,9 +196,26 @@ class World:
         # planned from t = 0.05 s after 78.7 s).
         if self.time < t0:
             raise FloatingPointError(
-                f"physics diverged after t = {t0:.3f} s (MuJoCo reset its state)")
+                f"physics diverged after t = {t0:.3f} s (MuJoCo reset its state)"
+                + self._divergence_clues())
         if not np.all(np.isfinite(self.data.qpos)):
             raise FloatingPointError(f"physics diverged at t = {self.time:.3f} s")
+
+    def _divergence_clues(self) -> str:
+        """What MuJoCo said about the diverging step (the joint whose acceleration went bad)
+        and how far the hands' servos had wound up: clues to why, for the log."""
+        clues = []
+        for kind, what in (("BADQPOS", "position"), ("BADQVEL", "velocity"),
+                           ("BADQACC", "acceleration")):
+            warn = self.data.warning[int(getattr(mujoco.mjtWarning, f"mjWARN_{kind}"))]
+            if warn.number > 0 and 0 <= warn.lastinfo < self.model.nv:
+                joint = self.model.joint(int(self.model.dof_jntid[warn.lastinfo])).name
+                clues.append(f"bad {what} of joint {joint or warn.lastinfo}")
+        for hand, (link, _, servo) in sorted(self._goals.items()):
+            clues.append(f"{hand} hand on {link}: servo integral "
+                         f"{1000 * float(np.linalg.norm(servo.int_pos)):.1f} mm, "
+                         f"{math.degrees(float(np.linalg.norm(servo.int_rot))):.1f} deg")
+        return f"; {'; '.join(clues)}" if clues else ""
 
     def run_until(self, t: float) -> None:
         """Advance the simulation until time ``t`` [s] (to the nearest physics step)."""
