@@ -92,3 +92,20 @@ def test_moved_windows_stay_off_the_poles() -> None:
     assert aim.of("ng") == {"L3": pytest.approx(10.0)}
     centre = _centres(aim.goal(goal, "ng"), "L3")[VERTICAL]
     assert centre == pytest.approx(178.5)  # 169 + 10, clamped at 180 - 1.5
+
+
+def test_a_released_goal_link_that_sank_is_aimed_higher() -> None:
+    aim = Aim()
+    predicted = TARGET
+    # L3 sank 9 deg while released (an NG plan predicts it stays): aim it 9 higher.
+    assert aim.observe_sag(OBJ, "ng", predicted, _with({2: 111.0}), "L3") == pytest.approx(-9.0)
+    assert aim.of("ng") == {"L3": pytest.approx(9.0)}
+    # Not sag: it rose, it moved mostly sideways, or it is far off (a push, a lost grasp).
+    assert aim.observe_sag(OBJ, "ng", predicted, _with({4: 119.0}), "L5") is None
+    sideways = _with({4: 107.0}, {4: TARGET.theta[4] + 12.0})
+    assert aim.observe_sag(OBJ, "ng", predicted, sideways, "L5") is None
+    assert aim.observe_sag(OBJ, "ng", predicted, _with({4: 70.0}), "L5") is None
+    assert aim.of("ng") == {"L3": pytest.approx(9.0)}
+    # Sinking again adds up (and stays within the limit).
+    aim.observe_sag(OBJ, "ng", predicted, _with({2: 115.0}), "L3")
+    assert aim.of("ng") == {"L3": pytest.approx(10.0)}

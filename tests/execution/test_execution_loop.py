@@ -136,3 +136,42 @@ def test_a_plan_that_ends_short_moves_the_next_plans_aim() -> None:
     off = LoopConfig(EncodingOptions("ng"), accept_deg=0.01, max_replans=1, aim=False)
     log = run_loop(make_world(obj, init, hands="virtual", seed=1), target, off, seed=1)
     assert log.plans[1]["aim"] == {}
+
+
+def test_only_a_released_goal_link_sinking_under_ng_moves_the_aim() -> None:
+    """The monitor's firings teach the aim (``ClosedLoop._learn_sag``) only when the plan is
+    gravity-free (NG), the link is a goal link and no hand holds it right now."""
+    from dataclasses import replace as dc_replace
+
+    from artiplan.execution.dispatch import Rotate
+    from artiplan.execution.loop import ClosedLoop
+    from artiplan.model import Configuration
+    from artiplan.semantics import TimedAction
+    from artiplan.world import make_world
+
+    obj = ArticulatedObject(3)
+    init = Configuration((0.0, 0.0, 0.0), (90.0, 90.0, 90.0))
+    target = Configuration((0.0, 0.0, 100.0), (90.0, 90.0, 120.0))
+    sunk = Configuration((0.0, 0.0, 100.0), (90.0, 90.0, 112.0))
+
+    def loop(model: str) -> ClosedLoop:
+        world = make_world(obj, init, hands="virtual", seed=1)
+        return ClosedLoop(world, target, LoopConfig(EncodingOptions(model), use_ontology=False))
+
+    ng = loop("ng")
+    assert "L3" in ng.goal.links
+    turn = Rotate(TimedAction(0.0, "start-increase", ("L2", "L3", "z-axis")), "L2", "L3",
+                  "z-axis", 1, 1.0)
+    ng._turn = (turn, 0.0, 10.0)  # L3 in a hand: what it does is the turn's, not sag
+    ng._learn_sag("L3", target, sunk)
+    assert ng.aim is not None and ng.aim.of("ng") == {}
+    ng._turn = None
+    ng._learn_sag("L3", target, sunk)
+    assert ng.aim.of("ng") == {"L3": pytest.approx(8.0)}
+    ucm = loop("ucm")  # a model with gravity: its errors are not the missing sag
+    ucm._learn_sag("L3", target, sunk)
+    assert ucm.aim is not None and ucm.aim.offsets == {}
+    off = ClosedLoop(make_world(obj, init, hands="virtual", seed=1), target,
+                     dc_replace(LoopConfig(EncodingOptions("ng")), aim=False, use_ontology=False))
+    off._learn_sag("L3", target, sunk)
+    assert off.aim is None

@@ -6,11 +6,13 @@ the goal links ended 4-5 deg low on the vertical plane in 92% of the cases (sess
 logs: released links sag at the fall speed while the hands work elsewhere), after UCM plans
 about 0. So the next plans with the same model aim each goal link's vertical-plane window
 higher by what the last ones missed by (integral action, per model and link), while the
-acceptance is still judged against the true target.
+acceptance is still judged against the true target. A gravity-free plan whose goal link the
+monitor finds sunk mid-plan teaches the same (``Aim.observe_sag``).
 """
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, field, replace
 
 from artiplan.encoding.goals import AngleWindow, GoalSpec
@@ -58,11 +60,38 @@ class Aim:
             if errs[lk] >= self.max_error_deg or not self.pole_deg < g_t < 180.0 - self.pole_deg:
                 continue
             residual = got.gamma[i] - g_t
-            key = (model, lk)
-            off = self.offsets.get(key, 0.0) - self.gain * residual
-            self.offsets[key] = max(-self.limit_deg, min(self.limit_deg, off))
+            self._add(model, lk, residual)
             used[lk] = round(residual, 3)
         return used
+
+    def observe_sag(self, obj: ArticulatedObject, model: str, predicted: Configuration,
+                    perceived: Configuration, link: str) -> float | None:
+        """Learn from the monitor firing on goal ``link`` of a plan of ``model`` (one without
+        gravity, NG: it predicts a released link stays where it was turned) when the link sank
+        on the vertical plane: the next plans aim higher by what it sank so far.
+
+        Only a sinking (gamma down, at least twice the arc it moved sideways), not near a pole
+        nor far off: anything else is not sag (a push, a lost grasp). Returns the residual
+        used [deg, perceived minus predicted gamma], or None.
+        """
+        i = obj.index(link) - 1
+        err = float(goal_errors(obj, predicted, perceived, (link,))[link])
+        pred, got = canonical(predicted), canonical(perceived)
+        g_p = pred.gamma[i]
+        if err >= self.max_error_deg or not self.pole_deg < g_p < 180.0 - self.pole_deg:
+            return None
+        down = got.gamma[i] - g_p
+        side = ((got.theta[i] - pred.theta[i] + 180.0) % 360.0 - 180.0) \
+            * math.sin(math.radians(g_p))
+        if down >= 0.0 or abs(down) < 2.0 * abs(side):
+            return None
+        self._add(model, link, down)
+        return round(down, 3)
+
+    def _add(self, model: str, link: str, residual: float) -> None:
+        key = (model, link)
+        off = self.offsets.get(key, 0.0) - self.gain * residual
+        self.offsets[key] = max(-self.limit_deg, min(self.limit_deg, off))
 
     def goal(self, goal: GoalSpec, model: str) -> GoalSpec:
         """``goal`` with the vertical-plane windows of ``model``'s offset links moved (their

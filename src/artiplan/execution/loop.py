@@ -180,6 +180,21 @@ class ClosedLoop:
                 + f" on the vertical plane in the next {model.upper()} plans (residuals "
                 + ", ".join(f"{lk} {r:+.1f}" for lk, r in used.items()) + ")")
 
+    def _learn_sag(self, link: str, predicted: Configuration, perceived: Configuration) -> None:
+        """The monitor fired on ``link``: if it is a goal link a gravity-free (NG) plan left
+        released and it sank, the next NG plans aim it higher (``Aim.observe_sag``)."""
+        model = self.encoding.model
+        if self.aim is None or model != "ng" or link not in self.goal.links:
+            return
+        turn = self._turn[0] if self._turn is not None else None
+        if turn is not None and link in (turn.hold, turn.turn):
+            return
+        sank = self.aim.observe_sag(self.obj, model, predicted, perceived, link)
+        if sank is not None:
+            self.progress(f"{link} sank {sank:+.1f} deg released: aiming it "
+                          f"{self.aim.of(model)[link]:+.1f} deg on the vertical plane in the "
+                          "next NG plans")
+
     def _turn_close(self) -> None:
         """The turn in progress (if any) ends now: the refusals it unlocks are unlocked when
         its command went CLEAR_DEG or more (to where the arms stopped it short, if they did),
@@ -457,6 +472,7 @@ class ClosedLoop:
         self.observer(self.world, "monitor", kind)
         if not verdict.fired:
             return None
+        self._learn_sag(verdict.worst_link, predicted, percept.configuration)
         return (f"{verdict.worst_link} off the prediction by {verdict.worst_error:.1f} deg "
                 f"(threshold {verdict.threshold:g})")
 
