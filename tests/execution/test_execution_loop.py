@@ -140,7 +140,8 @@ def test_a_plan_that_ends_short_moves_the_next_plans_aim() -> None:
 
 def test_only_a_released_goal_link_sinking_under_ng_moves_the_aim() -> None:
     """The monitor's firings teach the aim (``ClosedLoop._learn_sag``) only when the plan is
-    gravity-free (NG), the link is a goal link and no hand holds it right now."""
+    gravity-free (NG), the link is a goal link, no hand holds it right now and no vertical
+    turn of the plan has carried it."""
     from dataclasses import replace as dc_replace
 
     from artiplan.execution.dispatch import Rotate
@@ -166,6 +167,10 @@ def test_only_a_released_goal_link_sinking_under_ng_moves_the_aim() -> None:
     ng._learn_sag("L3", target, sunk)
     assert ng.aim is not None and ng.aim.of("ng") == {}
     ng._turn = None
+    ng.swung = frozenset({"L3"})  # carried by a vertical turn of L2 earlier in this plan
+    ng._learn_sag("L3", target, sunk)
+    assert ng.aim.of("ng") == {}
+    ng.swung = frozenset()
     ng._learn_sag("L3", target, sunk)
     assert ng.aim.of("ng") == {"L3": pytest.approx(8.0)}
     ucm = loop("ucm")  # a model with gravity: its errors are not the missing sag

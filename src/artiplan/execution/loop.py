@@ -97,6 +97,8 @@ class ClosedLoop(Planning):
         self.planner = get_planner(self.config.planner)
         #: Links carried by the vertical-plane rotation in progress (see Monitor.check).
         self.carried: frozenset[str] = frozenset()
+        #: Links carried by a vertical-plane rotation so far in the plan being executed.
+        self.swung: frozenset[str] = frozenset()
         #: The rotation in progress when the arms stop it short (execution.regrasp).
         self.resume: Resume | None = None
         #: The next turn of each (link index, plane) still ahead in the plan being executed.
@@ -240,6 +242,7 @@ class ClosedLoop(Planning):
         tol = 0.5 * float(self.world.model.opt.timestep) + _EPS
         next_mon = self.world.time
         self.resume = None
+        self.swung = frozenset()
         while True:
             end = pred.t0 + span  # the prediction shifts when a grasp is late
             t_act = self._due(actions[i], pred) if i < len(actions) else end
@@ -346,6 +349,7 @@ class ClosedLoop(Planning):
             did += f" ({self._align(step, pred, self._speed(step)):+.1f} deg behind at the grasp)"
             self._turn = (step, self.world.time, self._speed(step))
         self.carried = _carried(self.obj.links, step) if ok else frozenset()
+        self.swung |= self.carried
         if isinstance(step, Rotate) or not ok:  # a new turn, a stop or a failure
             self.resume = None
         if ok and isinstance(step, Rotate):

@@ -51,6 +51,7 @@ class Planning:
     current_plan: Plan
     _final_conf: Configuration | None
     _turn: tuple[Rotate, float, float] | None
+    swung: frozenset[str]
     progress: Callable[[str], None]
 
     def _learn_aim(self) -> None:
@@ -68,12 +69,16 @@ class Planning:
 
     def _learn_sag(self, link: str, predicted: Configuration, perceived: Configuration) -> None:
         """The monitor fired on ``link``: if it is a goal link a gravity-free (NG) plan left
-        released and it sank, the next NG plans aim it higher (``Aim.observe_sag``)."""
+        released and it sank, the next NG plans aim it higher (``Aim.observe_sag``). Not a
+        link a vertical turn of this plan has carried: what the rigid carry rule gets wrong
+        is not sag (measured: a 4-link push task learned +8.8 deg so and overshot by 7.6)."""
         model = self.encoding.model
         if self.aim is None or model != "ng" or link not in self.goal.links:
             return
         turn = self._turn[0] if self._turn is not None else None
         if turn is not None and link in (turn.hold, turn.turn):
+            return
+        if link in self.swung:  # carried through a vertical turn: the carry rule's error
             return
         sank = self.aim.observe_sag(self.obj, model, predicted, perceived, link)
         if sank is not None:
