@@ -19,6 +19,7 @@ from artiplan.encoding.goals import AngleWindow, GoalSpec
 from artiplan.execution.monitor import goal_errors
 from artiplan.execution.problem import canonical
 from artiplan.model import ArticulatedObject, Configuration
+from artiplan.model.angles import signed_delta_deg
 
 #: The vertical plane: the angle a released link sags on.
 VERTICAL = "z-axis"
@@ -81,8 +82,7 @@ class Aim:
         if err >= self.max_error_deg or not self.pole_deg < g_p < 180.0 - self.pole_deg:
             return None
         down = got.gamma[i] - g_p
-        side = ((got.theta[i] - pred.theta[i] + 180.0) % 360.0 - 180.0) \
-            * math.sin(math.radians(g_p))
+        side = signed_delta_deg(pred.theta[i], got.theta[i]) * math.sin(math.radians(g_p))
         if down >= 0.0 or abs(down) < 2.0 * abs(side):
             return None
         self._add(model, link, down)

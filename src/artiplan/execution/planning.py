@@ -126,7 +126,7 @@ class Planning:
         if self.config.advance_latency:
             self.world.run_until(self.world.time + latency)
         t0 = self.world.time
-        solved = result.status is PlanStatus.SOLVED and result.plan is not None
+        solved = _solved(result)
         record: dict[str, Any] = {
             "index": index, "start_time": round(t0, 4), "reason": reason,
             "model": self.encoding.model,
