@@ -51,6 +51,9 @@ def main() -> None:
     ap.add_argument("--no-aim", action="store_true",
                     help="plans aim at the target itself, not off it by what plans that "
                          "ended short missed by (LoopConfig.aim)")
+    ap.add_argument("--free-carry-replans", type=int, default=None,
+                    help="re-plans after a carried link's error free of the budget "
+                         "(default: LoopConfig's; 0: they count)")
     ap.add_argument("--max-turn", type=float, default=None,
                     help="plans first sought with turns of at most this [deg] (0: never; "
                          "default: LoopConfig's)")
@@ -92,6 +95,8 @@ def main() -> None:
         config = replace(config, aim=False)
     if args.max_turn is not None:
         config = replace(config, max_turn_deg=args.max_turn or None)
+    if args.free_carry_replans is not None:
+        config = replace(config, free_carry_replans=args.free_carry_replans)
     if args.max_replans is not None:
         config = replace(config, max_replans=args.max_replans)
     rows = []
@@ -107,6 +112,7 @@ def main() -> None:
                    "replans": len(log.replans), "interventions": len(log.interventions),
                    "reasons": [r["reason"] for r in log.replans],
                    "refusals": len(log.refusals),
+                   "carry_replans": len(log.carry_replans),
                    "regrasps": sum(h["ok"] for h in log.happenings
                                    if h["action"].endswith("resumed")),
                    "collisions": len(log.collisions),
@@ -121,7 +127,7 @@ def main() -> None:
                    "compensate": not args.no_compensate, "carry": args.carry, "fall": args.fall,
                    "max_replans": config.max_replans, "monitor_ahead": config.monitor_ahead,
                    "fallback": config.fallback_model, "max_turn_deg": config.max_turn_deg,
-                   "aim": config.aim}
+                   "aim": config.aim, "free_carry_replans": config.free_carry_replans}
             rows.append(row)
             if args.logs is not None:
                 args.logs.mkdir(parents=True, exist_ok=True)
@@ -133,7 +139,8 @@ def main() -> None:
     print(f"success {sum(r['success'] for r in rows)}/{len(rows)}, re-plans mean "
           f"{statistics.mean(r['replans'] for r in rows):.2f} max "
           f"{max(r['replans'] for r in rows)}, refusals planned around "
-          f"{sum(r['refusals'] for r in rows)}, turns resumed by a re-grasp "
+          f"{sum(r['refusals'] for r in rows)}, plans again after a carried link's error "
+          f"{sum(r['carry_replans'] for r in rows)}, turns resumed by a re-grasp "
           f"{sum(r['regrasps'] for r in rows)}, interventions applied "
           f"{sum(r['interventions'] for r in rows)}, re-plan latency median "
           f"{statistics.median(lat) if lat else float('nan'):.3f} s max "

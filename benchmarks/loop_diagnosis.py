@@ -32,6 +32,8 @@ def _kind(reason: str) -> str:
         return "refusal"
     if reason.startswith("goal not reached"):
         return "final"
+    if reason.endswith("when the vertical turn carrying it stopped"):
+        return "carry"
     return "monitor"
 
 

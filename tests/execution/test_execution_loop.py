@@ -4,6 +4,7 @@
 from __future__ import annotations
 
 import random
+from typing import Any
 
 import numpy as np
 import pytest
@@ -180,3 +181,50 @@ def test_only_a_released_goal_link_sinking_under_ng_moves_the_aim() -> None:
                      dc_replace(LoopConfig(EncodingOptions("ng")), aim=False, use_ontology=False))
     off._learn_sag("L3", target, sunk)
     assert off.aim is None
+
+
+def test_a_carried_link_off_when_its_turn_stops_is_planned_again_for_free() -> None:
+    """``LoopConfig.free_carry_replans``: the first percept after a vertical turn stops judges
+    the links it carried; one off the prediction then is planned again without spending the
+    re-plan budget (the carry rule's known error), up to the cap; later percepts, links still
+    carried, and other links spend it as before."""
+    from dataclasses import replace as dc_replace
+
+    from artiplan.execution.loop import ClosedLoop
+    from artiplan.model import Configuration
+    from artiplan.world import make_world
+
+    obj = ArticulatedObject(4)
+    init = Configuration((0.0, 0.0, 90.0, 90.0), (90.0, 90.0, 90.0, 90.0))
+    world = make_world(obj, init, hands="virtual", seed=1)
+    loop = ClosedLoop(world, init, LoopConfig(EncodingOptions("ng"), use_ontology=False,
+                                              free_carry_replans=1))
+    truth = world.true_configuration()
+    # The model carried L3 up by 30 deg on its vertical plane; the world did not.
+    model = Configuration(truth.theta, (truth.gamma[0], truth.gamma[1], truth.gamma[2] + 30.0,
+                                        truth.gamma[3]))
+
+    class Constant:  # the plan's prediction: the model's configuration at any time
+        def at(self, t: float) -> Configuration:
+            return model
+
+    pred: Any = Constant()
+    plain = loop._observe(pred, 0, "monitor")
+    assert plain is not None and plain.startswith("L3 off the prediction by ")
+    assert not loop.carry_free and not plain.endswith("stopped")
+    loop.unjudged, loop.carried = frozenset({"L3", "L4"}), frozenset({"L3", "L4"})
+    assert loop._observe(pred, 0, "monitor") is None  # still carried: not judged yet
+    assert loop.unjudged == {"L3", "L4"}
+    loop.carried = frozenset()  # the turn stopped
+    fresh = loop._observe(pred, 0, "monitor")
+    assert fresh is not None and fresh.endswith("when the vertical turn carrying it stopped")
+    assert loop.carry_free and loop.unjudged == frozenset()
+    loop.carry_free = False
+    again = loop._observe(pred, 0, "monitor")  # judged once already: a plain re-plan
+    assert again is not None and not loop.carry_free
+    loop.unjudged, loop.carry_count = frozenset({"L3"}), 1  # the cap is spent
+    assert loop._observe(pred, 0, "monitor") is not None and not loop.carry_free
+    off = ClosedLoop(make_world(obj, init, hands="virtual", seed=1), init,
+                     dc_replace(loop.config, free_carry_replans=0))
+    off.unjudged = frozenset({"L3"})
+    assert off._observe(pred, 0, "monitor") is not None and not off.carry_free

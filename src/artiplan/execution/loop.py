@@ -99,6 +99,12 @@ class ClosedLoop(Planning):
         self.carried: frozenset[str] = frozenset()
         #: Links carried by a vertical-plane rotation so far in the plan being executed.
         self.swung: frozenset[str] = frozenset()
+        #: Links a vertical turn carried that no percept has judged since it stopped.
+        self.unjudged: frozenset[str] = frozenset()
+        #: The last re-plan reason is such a link off the prediction, free of the budget.
+        self.carry_free = False
+        #: Plans made again for free so (``LoopConfig.free_carry_replans``).
+        self.carry_count = 0
         #: The rotation in progress when the arms stop it short (execution.regrasp).
         self.resume: Resume | None = None
         #: The next turn of each (link index, plane) still ahead in the plan being executed.
@@ -140,7 +146,7 @@ class ClosedLoop(Planning):
             prediction = self._plan(reason, counted)
             if prediction is None:
                 return
-            self.refusals.free = False
+            self.refusals.free = self.carry_free = False
             outcome = self._execute(prediction)
             if outcome is None:  # plan finished: check the goal at the final happening
                 if self._final_check() or not self._may_replan():
@@ -152,13 +158,17 @@ class ClosedLoop(Planning):
                 reason = outcome
             self._turn_close()
             self.world.stop(release=True)
-            self.carried = frozenset()
+            self.carried = self.unjudged = frozenset()
             # A rotation the world refused: planning again without it is part of planning
             # (the motion planner answering the task planner), not a re-plan after an
-            # execution the prediction got wrong (execution.refusals, MAX_FREE a run).
-            counted = not self.refusals.free
+            # execution the prediction got wrong (execution.refusals, MAX_FREE a run). The
+            # same for a link the model's carry rule mispredicted (free_carry_replans).
+            counted = not (self.refusals.free or self.carry_free)
             if not counted:
-                self.refusals.count += 1
+                if self.carry_free:
+                    self.carry_count += 1
+                else:
+                    self.refusals.count += 1
                 continue
             self.replans += 1
             if self.replans >= self.config.fallback_after:
@@ -258,7 +268,7 @@ class ClosedLoop(Planning):
             self._ahead = self._turns_ahead(actions[i:], pred)
             if t_res <= now + tol and (i >= len(actions) or t_act > now + tol):
                 reason = self._observe(pred, index, "happening")
-                if reason is not None and self._may_replan():
+                if reason is not None and (self.carry_free or self._may_replan()):
                     return reason
                 failure = self._regrasp(pred, index)
                 if failure is not None and self._may_replan():
@@ -267,7 +277,7 @@ class ClosedLoop(Planning):
                 continue
             happening = i < len(actions) and t_act <= now + tol
             reason = self._observe(pred, index, "happening" if happening else "monitor")
-            if reason is not None and self._may_replan():
+            if reason is not None and (self.carry_free or self._may_replan()):
                 return reason
             if happening:
                 while i < len(actions) and self._due(actions[i], pred) <= now + tol:
@@ -290,6 +300,8 @@ class ClosedLoop(Planning):
         percept = self.world.perceive(reference=predicted)
         judged, passed = aligned_ahead(predicted, percept.configuration, self._ahead)
         verdict = self.monitor.check(judged, percept.configuration, self.carried)
+        # Links whose carrying turn has stopped are judged now, once as "just carried".
+        fresh, self.unjudged = self.unjudged - self.carried, self.unjudged & self.carried
         sample = {
             "time": round(now, 4), "plan": index, "kind": kind, "predicted": conf_dict(predicted),
             "perceived": conf_dict(percept.configuration),
@@ -301,8 +313,13 @@ class ClosedLoop(Planning):
         if not verdict.fired:
             return None
         self._learn_sag(verdict.worst_link, predicted, percept.configuration)
-        return (f"{verdict.worst_link} off the prediction by {verdict.worst_error:.1f} deg "
-                f"(threshold {verdict.threshold:g})")
+        reason = (f"{verdict.worst_link} off the prediction by {verdict.worst_error:.1f} deg "
+                  f"(threshold {verdict.threshold:g})")
+        if (verdict.worst_link in fresh and self.carry_count < self.config.free_carry_replans
+                and now < self.config.max_time):
+            self.carry_free = True
+            reason += " when the vertical turn carrying it stopped"
+        return reason
 
     def _turns_ahead(self, steps: list[Step], pred: Prediction) -> Ahead:
         """The next turn of each (link, plane) still to start (a pending re-grasp first,
@@ -348,6 +365,7 @@ class ClosedLoop(Planning):
         if ok and isinstance(step, Rotate):
             did += f" ({self._align(step, pred, self._speed(step)):+.1f} deg behind at the grasp)"
             self._turn = (step, self.world.time, self._speed(step))
+        self.unjudged |= self.carried  # any dispatch ends the turn in progress
         self.carried = _carried(self.obj.links, step) if ok else frozenset()
         self.swung |= self.carried
         if isinstance(step, Rotate) or not ok:  # a new turn, a stop or a failure

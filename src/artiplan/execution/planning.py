@@ -52,6 +52,7 @@ class Planning:
     _final_conf: Configuration | None
     _turn: tuple[Rotate, float, float] | None
     swung: frozenset[str]
+    carry_free: bool
     progress: Callable[[str], None]
 
     def _learn_aim(self) -> None:
@@ -109,7 +110,7 @@ class Planning:
 
     def _plan(self, reason: str, counted: bool = True) -> Prediction | None:
         """Perceive, build the problem, plan; log it (a re-plan when ``counted``, else a plan
-        again after a refusal). None when no plan was found."""
+        again after a refusal or a carried link's error). None when no plan was found."""
         if self.refusals.stuck:
             self._escape()
         start = canonical(self._perceive_for_planning())
@@ -121,6 +122,8 @@ class Planning:
                  "latency_wall_s": round(latency, 4)}
         if index and counted:
             self.log.replans.append(entry)
+        elif index and self.carry_free:
+            self.log.carry_replans.append(entry)
         elif index:
             self.log.refusals.append(entry)
         if self.config.advance_latency:

@@ -81,6 +81,7 @@ RUN_LOG_SCHEMA: dict[str, Any] = {
                            "did": {"type": "string"}}}},
         "replans": {"type": "array", "items": _REPLAN},
         "refusals": {"type": "array", "items": _REPLAN},
+        "carry_replans": {"type": "array", "items": _REPLAN},
         "interventions": {"type": "array", "items": {
             "type": "object", "required": ["time", "link", "plane", "delta_deg"]}},
         "final": {"type": "object", "required": ["time", "perceived", "goal_errors", "success"],
@@ -137,6 +138,9 @@ class RunLog:
     #: Plans made again because the world refused one of the last plan's rotations (not
     #: re-plans, up to execution.refusals.MAX_FREE a run): time, reason, latency.
     refusals: list[dict[str, Any]] = field(default_factory=list)
+    #: Plans made again because a link a vertical turn carried was off the prediction when
+    #: the turn stopped (not re-plans, up to LoopConfig.free_carry_replans a run).
+    carry_replans: list[dict[str, Any]] = field(default_factory=list)
 
     def to_dict(self) -> dict[str, Any]:
         return {"schema": SCHEMA_RUN_LOG, **self.__dict__}
