@@ -347,3 +347,44 @@ def test_refusals_forget_an_ungraspable_link_once_a_turn_separates_it() -> None:
     assert r.ungraspable
     r.turned(rot("L4", "L5"), obj)  # L5 turns away from L3
     assert not r.ungraspable
+
+
+def test_refusals_for_want_of_an_arm_motion_are_ignored_before_the_others() -> None:
+    """No plan around every refusal: the next try ignores only those refused for want of an
+    arm motion (randomised, free when refused again), keeping the grasps' and turns' refusals
+    (they would come again from here); only then all of them."""
+    from artiplan.execution.loop import ClosedLoop
+    from artiplan.semantics.results import PlanResult, PlanStatus
+    from artiplan.world import make_world
+
+    obj = ArticulatedObject(3)
+    init, target = random_pair(3, random.Random(6))
+    world = make_world(obj, init, hands="virtual", seed=6)
+    loop = ClosedLoop(world, target, LoopConfig(EncodingOptions("ng"), max_turn_deg=None,
+                                                fallback_model=None), None, 6, None)
+    real = loop.planner.plan
+    asked: list[tuple[bool, bool]] = []
+    grasp, motion = ("L2", "L3", "z-axis", "increase"), ("L1", "L2", "z-axis", "decrease")
+
+    def picky(domain: str, problem: str, **kw: Any) -> Any:
+        around = ("(refused-increase L2 L3 z-axis)" in problem,
+                  "(refused-decrease L1 L2 z-axis)" in problem)
+        asked.append(around)
+        if around[1]:  # no plan around the arm-motion refusal (injected)
+            return PlanResult(PlanStatus.NO_PLAN, message="no plan (injected)")
+        return real(domain, problem, **kw)
+
+    loop.planner.plan = picky  # type: ignore[method-assign]
+    loop.refusals.refused = frozenset({grasp, motion})
+    loop.refusals.caught = frozenset({motion})
+    result = loop._solve(init)
+    assert asked == [(True, True), (True, False)]
+    assert result.plan is not None and loop.refusals.relaxed
+    asked.clear()
+    loop.refusals.caught = frozenset()  # both refused for their grasps: all at once
+    loop._solve(init)
+    assert asked == [(True, True), (False, False)]
+    asked.clear()
+    loop.refusals.refused = loop.refusals.caught = frozenset()
+    loop._solve(init)
+    assert asked == [(False, False)] and not loop.refusals.relaxed
