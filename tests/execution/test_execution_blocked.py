@@ -388,3 +388,39 @@ def test_refusals_for_want_of_an_arm_motion_are_ignored_before_the_others() -> N
     loop.refusals.refused = loop.refusals.caught = frozenset()
     loop._solve(init)
     assert asked == [(False, False)] and not loop.refusals.relaxed
+
+
+def test_a_rotation_refused_again_from_the_same_state_lets_the_chain_settle_first() -> None:
+    """A dead end: a plan that had to ignore the refusals starts with a rotation refused from
+    this very state, and its grasps refuse it again. The hands let go for WAIT_S (the chain
+    settles under gravity) and the same planning goes on without spending the budget, at
+    most MAX_WAITS times a run; a motion not found (randomised) needs no wait."""
+    from artiplan.execution.dispatch import Rotate
+    from artiplan.execution.loop import ClosedLoop
+    from artiplan.execution.refusals import MAX_WAITS, WAIT_S
+    from artiplan.semantics import TimedAction
+    from artiplan.world import make_world
+
+    step = Rotate(TimedAction(1.0, "start-increase", ("L2", "L3", "z-axis")), "L2", "L3",
+                  "z-axis", 1, 5.0)
+    obj = ArticulatedObject(3)
+    init, target = random_pair(3, random.Random(6))
+    world = make_world(obj, init, hands="virtual", seed=6)
+    loop = ClosedLoop(world, target, LoopConfig(EncodingOptions("ng")), None, 6, None)
+    r = loop.refusals
+    r.refuse(step, in_time=True)  # first refusal: planned around, no wait
+    assert r.free and not r.waiting
+    r.relaxed = True  # no plan around it: the plan ignoring it starts with it again
+    r.refuse(step, in_time=True, arms_caught=True)
+    assert r.free and not r.waiting  # no arm motion found: may go as it is
+    for _ in range(MAX_WAITS):
+        r.relaxed = True  # (each new plan says whether it ignored the refusals)
+        r.refuse(step, in_time=True)
+        assert r.free and r.waiting
+        t = world.time
+        loop._plan("action failed", counted=False)
+        assert world.time >= t + WAIT_S - 0.01 and not r.waiting
+        assert loop.log.happenings[-1]["action"] == "(wait)"
+    r.relaxed = True
+    r.refuse(step, in_time=True)
+    assert not r.waiting and not r.free  # the waits are used up: a re-plan

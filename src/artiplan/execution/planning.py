@@ -17,7 +17,7 @@ from artiplan.execution.config import Intervention, LoopConfig
 from artiplan.execution.dispatch import Rotate
 from artiplan.execution.predict import Prediction
 from artiplan.execution.problem import build_problem, canonical
-from artiplan.execution.refusals import Refusal, Refusals, describe
+from artiplan.execution.refusals import WAIT_S, Refusal, Refusals, describe
 from artiplan.execution.runlog import RunLog, conf_dict
 from artiplan.model import ArticulatedObject, Configuration
 from artiplan.semantics import Plan
@@ -113,6 +113,8 @@ class Planning:
         again after a refusal or a carried link's error). None when no plan was found."""
         if self.refusals.stuck:
             self._escape()
+        elif self.refusals.waiting:
+            self._wait()
         start = canonical(self._perceive_for_planning())
         t = time.perf_counter()
         result = self._solve(start)
@@ -169,6 +171,19 @@ class Planning:
         self.log.happenings.append({"time": round(t, 4), "plan": len(self.log.plans) - 1,
                                     "action": "(arms-home)", "ok": moved, "did": did})
         self.progress(f"t={t:7.2f} s  arms caught: {did}")
+
+    def _wait(self) -> None:
+        """A dead end (a rotation refused again from where it was refused): the hands stay
+        open for WAIT_S and the chain settles under gravity; the same rotation may then find
+        a free grasp pair (execution.refusals.MAX_WAITS)."""
+        t = self.world.time
+        self.world.run_until(t + WAIT_S)
+        self.refusals.waiting = False
+        self.refusals.waits += 1
+        did = f"hands open for {WAIT_S:g} s: the chain settles before planning again"
+        self.log.happenings.append({"time": round(t, 4), "plan": len(self.log.plans) - 1,
+                                    "action": "(wait)", "ok": True, "did": did})
+        self.progress(f"t={t:7.2f} s  dead end: {did}")
 
     def _solve(self, start: Configuration) -> Any:
         """Plan from ``start``; not starting with a rotation the world has refused since the
