@@ -1,11 +1,13 @@
 """Why closed-loop runs re-plan and fail: per run, from the per-task logs that
 ``execution_loop.py --logs DIR`` writes (``task-K.json``).
 
-Prints, per run: successes; re-plans by the model in use and their kind (monitor, refusal,
+Prints, per run: successes; re-plans by the model in use and their kind (monitor, carry: a
+carried link off when its vertical turn stopped, refusal,
 goal missed at the final happening); monitor firings by link, what the arms were doing
 (turning which pair, or released) and size (small: <= 15 deg); refusals by kind (a static
 grasp: every grasp of a link met something at the grasp or on its final leg; the turn; no
-arm motion found); planned turns by length; runs the physics ended (MuJoCo diverged).
+arm motion found); dead ends waited out; planned turns by length; runs the physics ended
+(MuJoCo diverged).
 
 Usage: .venv/bin/python benchmarks/loop_diagnosis.py NAME=LOGDIR [NAME=LOGDIR ...]
 """
@@ -79,6 +81,7 @@ def diagnose(name: str, logs: list[dict[str, Any]]) -> None:
     refused: collections.Counter[str] = collections.Counter()
     turns: collections.Counter[str] = collections.Counter()
     ended = []
+    waits = 0
     for log in logs:
         plans = log["plans"]
         for prev, plan in zip(plans, plans[1:], strict=False):
@@ -88,6 +91,7 @@ def diagnose(name: str, logs: list[dict[str, Any]]) -> None:
                 size = "small" if float(m.group(2)) <= 15.0 else "big"
                 fired[(m.group(1), _doing(log, plan["start_time"]), size)] += 1
         for h in log["happenings"]:
+            waits += h["action"] == "(wait)"
             if not h["ok"] and h["action"].startswith("(start"):
                 refused[_refusal(h["did"])] += 1
         for plan in plans:
@@ -101,6 +105,7 @@ def diagnose(name: str, logs: list[dict[str, Any]]) -> None:
     for (link, doing, size), n in fired.most_common():
         print(f"  {n:4d}  {link} {doing} {size}")
     print("refusals:", ", ".join(f"{k} {n}" for k, n in refused.most_common()))
+    print("dead ends waited out (hands open for a while):", waits)
     print("planned turns [deg]:", ", ".join(f"{k}: {n}" for k, n in sorted(turns.items())))
     print("runs the physics ended:", len(ended), *ended[:3])
 
