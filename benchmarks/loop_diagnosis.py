@@ -32,10 +32,10 @@ def _tasks(root: Path) -> list[dict[str, Any]]:
 def _kind(reason: str) -> str:
     if reason.startswith("action failed"):
         return "refusal"
-    if reason.startswith("goal not reached"):
-        return "final"
     if reason.endswith("when the vertical turn carrying it stopped"):
         return "carry"
+    if reason.startswith("goal not reached"):
+        return "final"
     return "monitor"
 
 

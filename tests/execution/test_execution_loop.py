@@ -228,3 +228,28 @@ def test_a_carried_link_off_when_its_turn_stops_is_planned_again_for_free() -> N
                      dc_replace(loop.config, free_carry_replans=0))
     off.unjudged = frozenset({"L3"})
     assert off._observe(pred, 0, "monitor") is not None and not off.carry_free
+
+
+def test_a_plan_ending_with_a_carried_goal_link_off_is_planned_again_for_free() -> None:
+    """The final check misses only on goal links a vertical turn carried and no percept has
+    judged since (the plan ended as the turn stopped): the next plan is free of the budget,
+    as when the monitor catches such a link; any other goal link off makes it a re-plan."""
+    from artiplan.execution.loop import ClosedLoop
+    from artiplan.model import Configuration
+    from artiplan.world import make_world
+
+    obj = ArticulatedObject(6)
+    init = Configuration((0.0,) * 6, (90.0,) * 6)
+    loop = ClosedLoop(make_world(obj, init, hands="virtual", seed=1), init,
+                      LoopConfig(EncodingOptions("ng"), use_ontology=False))
+    loop.log.final = {"goal_errors": {"L3": 30.0, "L5": 2.0}}
+    assert loop._missed_carried() == "" and not loop.carry_free  # L3 was not carried
+    loop.unjudged = frozenset({"L3", "L4", "L5", "L6"})
+    assert loop._missed_carried() == "L3" and loop.carry_free
+    loop.carry_free, loop.unjudged = False, frozenset({"L5", "L6"})
+    loop.log.final = {"goal_errors": {"L3": 30.0, "L5": 9.0}}
+    assert loop._missed_carried() == "" and not loop.carry_free  # L3 off and not carried
+    loop.carried = frozenset({"L3", "L4", "L5", "L6"})  # the turn was still going
+    assert loop._missed_carried() == "L3, L5" and loop.carry_free
+    loop.carry_free, loop.carry_count = False, loop.config.free_carry_replans
+    assert loop._missed_carried() == "" and not loop.carry_free  # the free ones are used up

@@ -86,6 +86,8 @@ class LoopConfig:
             design (on 6 links by 46-142 deg after long turns, 8 of 10 failed runs spent
             budget so), so planning again from where they are is part of executing a plan
             of that model, as a receding horizon would, not a sign the execution went wrong.
+            The same for a plan that ends short only on goal links such a turn carried (no
+            percept judged them after it stopped: the plan ended with it).
         compensate_approach: With hands that approach their grasps in simulated time and a
             ``reach_time`` in the encoding: plans start with the hands away (the first grasp
             waits ``reach_time`` too), each start is dispatched ``reach_time`` early, and the

@@ -149,11 +149,17 @@ class ClosedLoop(Planning):
             self.refusals.free = self.carry_free = False
             outcome = self._execute(prediction)
             if outcome is None:  # plan finished: check the goal at the final happening
-                if self._final_check() or not self._may_replan():
+                if self._final_check():
+                    return
+                carried = self._missed_carried()
+                if not (self.carry_free or self._may_replan()):
                     return
                 reason = "goal not reached at the final happening"
-                self._learn_aim()
-                self._fall_back()
+                if self.carry_free:  # the carry rule's error, not sag nor the model's gravity
+                    reason += f"; {carried} off when the vertical turn carrying it stopped"
+                else:
+                    self._learn_aim()
+                    self._fall_back()
             else:
                 reason = outcome
             self._turn_close()
@@ -173,6 +179,21 @@ class ClosedLoop(Planning):
             self.replans += 1
             if self.replans >= self.config.fallback_after:
                 self._fall_back()
+
+    def _missed_carried(self) -> str:
+        """At a final check that missed: when every goal link off the target was carried by
+        a vertical turn not judged since it stopped (or still going when the plan ended), the
+        next plan is free of the budget like a carried link the monitor caught
+        (``LoopConfig.free_carry_replans``; sets ``carry_free``). The links, or ''."""
+        errs = self.log.final.get("goal_errors", {})
+        off = sorted(lk for lk, e in errs.items() if e > self.config.accept_deg)
+        judged_last = self.carried | self.unjudged
+        if (off and set(off) <= judged_last
+                and self.carry_count < self.config.free_carry_replans
+                and self.world.time < self.config.max_time):
+            self.carry_free = True
+            return ", ".join(off)
+        return ""
 
     def _turn_close(self) -> None:
         """The turn in progress (if any) ends now: the refusals it unlocks are unlocked when
