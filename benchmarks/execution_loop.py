@@ -54,6 +54,11 @@ def main() -> None:
     ap.add_argument("--free-carry-replans", type=int, default=None,
                     help="re-plans after a carried link's error free of the budget "
                          "(default: LoopConfig's; 0: they count)")
+    ap.add_argument("--free-refusals", type=int, default=None,
+                    help="plans made again after a refusal free of the budget "
+                         "(default: LoopConfig's)")
+    ap.add_argument("--threshold", type=float, default=None,
+                    help="the monitor's threshold on goal links [deg] (default: LoopConfig's)")
     ap.add_argument("--max-turn", type=float, default=None,
                     help="plans first sought with turns of at most this [deg] (0: never; "
                          "default: LoopConfig's)")
@@ -97,6 +102,10 @@ def main() -> None:
         config = replace(config, max_turn_deg=args.max_turn or None)
     if args.free_carry_replans is not None:
         config = replace(config, free_carry_replans=args.free_carry_replans)
+    if args.free_refusals is not None:
+        config = replace(config, free_refusals=args.free_refusals)
+    if args.threshold is not None:
+        config = replace(config, threshold_deg=args.threshold)
     if args.max_replans is not None:
         config = replace(config, max_replans=args.max_replans)
     rows = []
@@ -127,7 +136,8 @@ def main() -> None:
                    "compensate": not args.no_compensate, "carry": args.carry, "fall": args.fall,
                    "max_replans": config.max_replans, "monitor_ahead": config.monitor_ahead,
                    "fallback": config.fallback_model, "max_turn_deg": config.max_turn_deg,
-                   "aim": config.aim, "free_carry_replans": config.free_carry_replans}
+                   "aim": config.aim, "free_carry_replans": config.free_carry_replans,
+                   "free_refusals": config.free_refusals, "threshold": config.threshold_deg}
             rows.append(row)
             if args.logs is not None:
                 args.logs.mkdir(parents=True, exist_ok=True)

@@ -88,6 +88,8 @@ class LoopConfig:
             of that model, as a receding horizon would, not a sign the execution went wrong.
             The same for a plan that ends short only on goal links such a turn carried (no
             percept judged them after it stopped: the plan ended with it).
+        free_refusals: Plans made again after a refused rotation spend no re-plan budget, up
+            to this many a run (``execution.refusals``; 0: they all do).
         compensate_approach: With hands that approach their grasps in simulated time and a
             ``reach_time`` in the encoding: plans start with the hands away (the first grasp
             waits ``reach_time`` too), each start is dispatched ``reach_time`` early, and the
@@ -120,11 +122,12 @@ class LoopConfig:
     capped_time_limit: float = 10.0
     aim: bool = True
     free_carry_replans: int = 10
+    free_refusals: int = 20
 
     def __post_init__(self) -> None:
         if self.threshold_deg <= 0 or self.accept_deg <= 0 or self.plan_tolerance_deg <= 0:
             raise ValueError("threshold, acceptance and planning tolerances must be positive")
         if self.monitor_dt <= 0:
             raise ValueError("monitor_dt must be positive")
-        if self.max_replans < 0 or self.free_carry_replans < 0:
-            raise ValueError("max_replans and free_carry_replans must be >= 0")
+        if self.max_replans < 0 or self.free_carry_replans < 0 or self.free_refusals < 0:
+            raise ValueError("max_replans, free_carry_replans and free_refusals must be >= 0")

@@ -90,7 +90,7 @@ class ClosedLoop(Planning):
         self.pending = sorted(config.interventions, key=lambda i: i.time)
         self.replans = 0
         #: Rotations the world refused, planned around (:mod:`artiplan.execution.refusals`).
-        self.refusals = Refusals()
+        self.refusals = Refusals(max_free=self.config.free_refusals)
         #: Goal windows moved by the residuals of plans that ended short (execution.aim).
         self.aim = Aim() if config.aim else None
         self._final_conf: Configuration | None = None

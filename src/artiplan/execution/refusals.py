@@ -72,6 +72,7 @@ class Refusals:
         waiting: The last refusal was a dead end: the hands should let go for a while
             before planning again (:data:`MAX_WAITS`).
         waits: Times the hands let go so far.
+        max_free: Plans made again for free at most (``LoopConfig.free_refusals``).
     """
 
     refused: frozenset[Refusal] = frozenset()
@@ -85,6 +86,7 @@ class Refusals:
     ungraspable: frozenset[Ungraspable] = frozenset()
     waiting: bool = False
     waits: int = 0
+    max_free: int = MAX_FREE
 
     def refuse(self, step: Rotate, in_time: bool, arms_caught: bool = False,
                blocked: tuple[Ungraspable, ...] = ()) -> None:
@@ -99,7 +101,7 @@ class Refusals:
         # time (measured: 20 identical grasp refusals in a row at 4.8-5.1 s of one run),
         # or the same rotation once the chain has settled a little (MAX_WAITS).
         self.waiting = again and in_time and self.waits < MAX_WAITS
-        self.free = self.count < MAX_FREE and in_time and (
+        self.free = self.count < self.max_free and in_time and (
             arms_caught or not self.relaxed or self.waiting)
         if arms_caught:
             self.caught = self.caught | {refusal(step)}
