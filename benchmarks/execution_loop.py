@@ -59,6 +59,9 @@ def main() -> None:
                          "(default: LoopConfig's)")
     ap.add_argument("--threshold", type=float, default=None,
                     help="the monitor's threshold on goal links [deg] (default: LoopConfig's)")
+    ap.add_argument("--impact-stop", type=float, default=None, metavar="MM",
+                    help="Baxter: stop a turn on an arm contact deeper than MM [mm] and "
+                         "re-grasp (default: off)")
     ap.add_argument("--max-turn", type=float, default=None,
                     help="plans first sought with turns of at most this [deg] (0: never; "
                          "default: LoopConfig's)")
@@ -114,7 +117,9 @@ def main() -> None:
         for k in range(args.start, args.start + args.tasks):
             task = make_task(args.links, k, seed=args.seed)
             world = make_world(obj, task.initial, preset=args.preset, hands=args.hands, seed=k,
-                               approach_s=args.approach)
+                               approach_s=args.approach,
+                               impact_stop_m=None if args.impact_stop is None
+                               else args.impact_stop / 1000.0)
             t0 = time.perf_counter()
             log = run_loop(world, task.target, config, seed=task.seed)
             row = {"schema": "artiplan.execution-bench/1", "task": k, "success": log.success,
@@ -124,6 +129,8 @@ def main() -> None:
                    "carry_replans": len(log.carry_replans),
                    "regrasps": sum(h["ok"] for h in log.happenings
                                    if h["action"].endswith("resumed")),
+                   "impact_stops": sum(h["action"].endswith("stopped")
+                                       for h in log.happenings),
                    "collisions": len(log.collisions),
                    "latency_wall_s": [r["latency_wall_s"] for r in log.replans],
                    "sim_s": round(log.final["time"] if log.final.get("error")
@@ -137,7 +144,8 @@ def main() -> None:
                    "max_replans": config.max_replans, "monitor_ahead": config.monitor_ahead,
                    "fallback": config.fallback_model, "max_turn_deg": config.max_turn_deg,
                    "aim": config.aim, "free_carry_replans": config.free_carry_replans,
-                   "free_refusals": config.free_refusals, "threshold": config.threshold_deg}
+                   "free_refusals": config.free_refusals, "threshold": config.threshold_deg,
+                   "impact_stop_mm": args.impact_stop}
             rows.append(row)
             if args.logs is not None:
                 args.logs.mkdir(parents=True, exist_ok=True)

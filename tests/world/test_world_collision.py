@@ -129,3 +129,36 @@ def test_baxter_arms_stay_clear_over_a_rotation_that_collided_before() -> None:
         geoms = arm_geoms(world.model, hand, list(obj.links))
         dist, pair = clearance(world.model, world.data, geoms, world.hands.held(hand), False)
         assert dist >= 0.0, f"{hand}: {pair} {dist:.3f} m"
+
+
+@pytest.mark.slow
+@pytest.mark.ci
+def test_baxter_turn_stops_on_impact_when_asked() -> None:
+    """4 links, seed 10, grasps chosen blind (``avoid_collisions=False``): hold L3, rotate L4
+    by -90 deg on xy-axes drives the right wrist into the torso at ~6.2 s (54 mm deep by
+    9 s). With ``impact_stop_m`` the turn's command stops at the first contact deeper than
+    that, and the arm goes no deeper than its servo lag carries it."""
+    deepest = {}
+    for imp in (None, 0.005):
+        rng = random.Random(10)
+        conf = random_configuration(4, rng)
+        world = make_world(ArticulatedObject(4), conf, hands="baxter", preset="stiff", seed=10,
+                           avoid_collisions=False, impact_stop_m=imp)
+        k = rng.randint(1, 3)
+        plane = rng.choice(["z-axis", "xy-axes"])
+        sign = rng.choice([1, -1])
+        world.hold_and_rotate(f"L{k}", f"L{k + 1}", plane, sign, 10.0, extent_deg=90)
+        t0 = world.time
+        world.run_until(t0 + 9.0)
+        late = [e.depth_m for e in world.hands.contacts.events if e.start > t0 + 1.0]
+        deepest[imp] = max(late, default=0.0)
+        if imp is None:
+            assert not world.impacts
+            continue
+        assert len(world.impacts) == 1
+        when, geoms, depth = world.impacts[0]
+        assert depth > imp and any("right" in g for g in geoms)
+        assert world.turn_ends is not None and abs(world.turn_ends - when) < 1e-6
+        assert world.turn_limit is not None and "impact" in world.turn_limit[1]
+    assert deepest[None] > 0.03
+    assert deepest[0.005] < 0.5 * deepest[None]

@@ -111,6 +111,10 @@ class ClosedLoop(Planning):
         self._ahead: Ahead = {}
         #: The turn in progress: its step, the world time it started [s], speed [deg/s].
         self._turn: tuple[Rotate, float, float] | None = None
+        #: Re-grasps of the turn in progress so far (execution.regrasp.MAX_REGRASPS).
+        self._regrasps = 0
+        #: Turns the world stopped on impact so far (``WorldConfig.impact_stop_m``).
+        self._impacts_seen = len(getattr(world, "impacts", ()))
         self.log = RunLog(
             settings={**_settings(config), "hands": world.hands.kind,
                       "physics": asdict(world.config.physics)},
@@ -167,8 +171,8 @@ class ClosedLoop(Planning):
             self.carried = self.unjudged = frozenset()
             # A rotation the world refused: planning again without it is part of planning
             # (the motion planner answering the task planner), not a re-plan after an
-            # execution the prediction got wrong (execution.refusals, MAX_FREE a run). The
-            # same for a link the model's carry rule mispredicted (free_carry_replans).
+            # execution the prediction got wrong (execution.refusals, free_refusals a run).
+            # The same for a link the model's carry rule mispredicted (free_carry_replans).
             counted = not (self.refusals.free or self.carry_free)
             if not counted:
                 if self.carry_free:
@@ -286,6 +290,8 @@ class ClosedLoop(Planning):
                 self._intervene(self.pending.pop(0), index)
                 next_mon = now  # look again at once
                 continue
+            self._impacted(pred, index)
+            t_res = self.resume.due if self.resume is not None else float("inf")
             self._ahead = self._turns_ahead(actions[i:], pred)
             if t_res <= now + tol and (i >= len(actions) or t_act > now + tol):
                 reason = self._observe(pred, index, "happening")
@@ -392,6 +398,7 @@ class ClosedLoop(Planning):
         if isinstance(step, Rotate) or not ok:  # a new turn, a stop or a failure
             self.resume = None
         if ok and isinstance(step, Rotate):
+            self._regrasps = 0
             self.resume = resume_after(self.world, step, self._speed(step), pred.t0)
         self.log.happenings.append({"time": round(now, 4), "plan": index,
                                     "action": action.signature, "ok": ok, "did": did})
@@ -406,6 +413,26 @@ class ClosedLoop(Planning):
     def _speed(self, step: Rotate) -> float:
         """The rotation speed [deg/s] of ``step`` (the encoding's speed-i or speed-d)."""
         return self.encoding.speed_i if step.direction > 0 else self.encoding.speed_d
+
+    def _impacted(self, pred: Prediction, index: int) -> None:
+        """The world stopped the turn in progress on impact (``WorldConfig.impact_stop_m``):
+        logged, and resumed by a re-grasp like a turn stopped at its collision-free limit
+        (within :data:`~artiplan.execution.regrasp.MAX_REGRASPS`)."""
+        impacts = getattr(self.world, "impacts", ())
+        if len(impacts) <= self._impacts_seen:
+            return
+        self._impacts_seen = len(impacts)
+        limit = getattr(self.world, "turn_limit", None)
+        why = limit[1] if limit is not None else "stopped on impact"
+        if self._turn is not None:
+            step, _, speed = self._turn
+            self.resume = resume_after(self.world, step, speed, pred.t0, self._regrasps)
+            label = f"{step.action.signature} stopped"
+        else:
+            label = "turn stopped"
+        self.log.happenings.append({"time": round(self.world.time, 4), "plan": index,
+                                    "action": label, "ok": True, "did": why})
+        self.progress(f"t={self.world.time:7.2f} s  {label}: {why}")
 
     def _regrasp(self, pred: Prediction, index: int) -> str | None:
         """Resume the rotation the arms stopped short (:mod:`artiplan.execution.regrasp`):
@@ -431,6 +458,7 @@ class ClosedLoop(Planning):
             self._turn = (step, self.world.time, r.speed)
             did = (f"re-grasp for the last {remaining:.0f} deg: {did} ({waited:.2f} s, "
                    f"{lost:+.1f} deg behind after it)")
+            self._regrasps = r.done + 1
             self.resume = resume_after(self.world, step, r.speed, pred.t0, r.done + 1)
         self.log.happenings.append({"time": round(now, 4), "plan": index, "action": label,
                                     "ok": ok, "did": did})

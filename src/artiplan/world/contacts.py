@@ -100,11 +100,15 @@ class ContactLog:
     names: dict[int, str]
     events: list[Collision] = field(default_factory=list)
     _open: dict[tuple[int, int], Collision] = field(default_factory=dict)
+    #: The deepest penetration [m] of an arm in the step just read (0: none), and its geoms.
+    deepest_now: float = 0.0
+    deepest_pair: tuple[str, str] = ("", "")
 
     def update(self, data: mujoco.MjData) -> None:
         """Read the contacts of the step just taken."""
         n = int(data.ncon)
         touching: set[tuple[int, int]] = set()
+        self.deepest_now = 0.0
         if n:
             pairs = data.contact.geom[:n]
             dists = data.contact.dist[:n]
@@ -114,6 +118,9 @@ class ContactLog:
                     continue
                 key = (min(a, b), max(a, b))
                 touching.add(key)
+                if -float(dist) > self.deepest_now:
+                    self.deepest_now = -float(dist)
+                    self.deepest_pair = (self.names[key[0]], self.names[key[1]])
                 self._touch(key, float(dist), float(data.time))
         for key in [k for k in self._open if k not in touching]:
             del self._open[key]

@@ -47,6 +47,11 @@ class WorldConfig:
         seed: Seeds the camera noise.
         servo: Gains of the hands' pose servo (None: the hands' own ``servo_gains``).
         layout: Where the object, table and cameras are (None: a default for the hands).
+        impact_stop_m: Stop a turn's command where it is when an arm penetrates anything
+            (another object link, the other arm, the scene) deeper than this [m] while it
+            turns, as a robot's collision detection stops an arm on an unexpected force
+            (None: turns go on through contacts). The hands keep holding; the loop re-grasps
+            for the rest of the turn (:mod:`artiplan.execution.regrasp`).
     """
 
     physics: JointPhysics = field(default_factory=lambda: preset("stiff"))
@@ -54,6 +59,7 @@ class WorldConfig:
     seed: int = 0
     servo: ServoGains | None = None
     layout: SceneLayout | None = None
+    impact_stop_m: float | None = None
 
 
 @dataclass
@@ -113,6 +119,8 @@ class World:
         self._reference = self._estimate = conf.wrapped()
         #: (degrees, why) when the last turn stops short of its planned extent (else None).
         self.turn_limit: tuple[float, str] | None = None
+        #: Turns stopped on impact: (time [s], the geoms, depth [m]) (``impact_stop_m``).
+        self.impacts: list[tuple[float, tuple[str, str], float]] = []
         self.set_configuration(conf)
 
     # -- construction -------------------------------------------------------------------
@@ -190,6 +198,8 @@ class World:
             self.hands.control(h)
             mujoco.mj_step(self.model, self.data)
             self.hands.after_step()
+            if self._motion is not None and self.config.impact_stop_m is not None:
+                self._impact_stop(self.config.impact_stop_m)
         # MuJoCo answers a diverging step (bad accelerations) by resetting the whole state:
         # time back to 0, every body at the model's initial pose. Going on from there would
         # act on a world that teleported (measured once on 6 links with Baxter: the loop
@@ -200,6 +210,23 @@ class World:
                 + self._divergence_clues())
         if not np.all(np.isfinite(self.data.qpos)):
             raise FloatingPointError(f"physics diverged at t = {self.time:.3f} s")
+
+    def _impact_stop(self, depth_m: float) -> None:
+        """Stop the turn's command where it is now when an arm went deeper than ``depth_m``
+        [m] into something in the step just taken (``WorldConfig.impact_stop_m``): the turn
+        ends there, as at a :attr:`turn_limit` (:attr:`turn_ends` is now)."""
+        contacts = getattr(self.hands, "contacts", None)
+        m = self._motion
+        if contacts is None or m is None or contacts.deepest_now <= depth_m:
+            return
+        done = max(0.0, m.speed_rad_s * (self.time - m.t0))
+        if done >= m.limit_rad:
+            return
+        m.limit_rad = done
+        pair = "~".join(contacts.deepest_pair)
+        self.turn_limit = (math.degrees(done), f"stopped on impact: {pair} "
+                           f"{1000 * contacts.deepest_now:.0f} mm at t={self.time:.2f} s")
+        self.impacts.append((self.time, contacts.deepest_pair, contacts.deepest_now))
 
     def _divergence_clues(self) -> str:
         """What MuJoCo said about the diverging step (the joint whose acceleration went bad)
