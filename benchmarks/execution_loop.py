@@ -61,7 +61,7 @@ def main() -> None:
                     help="the monitor's threshold on goal links [deg] (default: LoopConfig's)")
     ap.add_argument("--impact-stop", type=float, default=None, metavar="MM",
                     help="Baxter: stop a turn on an arm contact deeper than MM [mm] and "
-                         "re-grasp (default: off)")
+                         "re-grasp (default: make_world's; 0: off)")
     ap.add_argument("--max-turn", type=float, default=None,
                     help="plans first sought with turns of at most this [deg] (0: never; "
                          "default: LoopConfig's)")
@@ -111,6 +111,8 @@ def main() -> None:
         config = replace(config, threshold_deg=args.threshold)
     if args.max_replans is not None:
         config = replace(config, max_replans=args.max_replans)
+    impact = {} if args.impact_stop is None else {
+        "impact_stop_m": args.impact_stop / 1000.0 if args.impact_stop > 0 else None}
     rows = []
     args.out.parent.mkdir(parents=True, exist_ok=True)
     with args.out.open("a" if args.start > 1 else "w") as fh:
@@ -118,8 +120,7 @@ def main() -> None:
             task = make_task(args.links, k, seed=args.seed)
             world = make_world(obj, task.initial, preset=args.preset, hands=args.hands, seed=k,
                                approach_s=args.approach,
-                               impact_stop_m=None if args.impact_stop is None
-                               else args.impact_stop / 1000.0)
+                               **impact)
             t0 = time.perf_counter()
             log = run_loop(world, task.target, config, seed=task.seed)
             row = {"schema": "artiplan.execution-bench/1", "task": k, "success": log.success,
@@ -145,7 +146,8 @@ def main() -> None:
                    "fallback": config.fallback_model, "max_turn_deg": config.max_turn_deg,
                    "aim": config.aim, "free_carry_replans": config.free_carry_replans,
                    "free_refusals": config.free_refusals, "threshold": config.threshold_deg,
-                   "impact_stop_mm": args.impact_stop}
+                   "impact_stop_mm": None if world.config.impact_stop_m is None
+                   else 1000.0 * world.config.impact_stop_m}
             rows.append(row)
             if args.logs is not None:
                 args.logs.mkdir(parents=True, exist_ok=True)

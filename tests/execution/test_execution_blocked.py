@@ -394,7 +394,8 @@ def test_a_rotation_refused_again_from_the_same_state_lets_the_chain_settle_firs
     """A dead end: a plan that had to ignore the refusals starts with a rotation refused from
     this very state, and its grasps refuse it again. The hands let go for WAIT_S (the chain
     settles under gravity) and the same planning goes on without spending the budget, at
-    most MAX_WAITS times a run; a motion not found (randomised) needs no wait."""
+    most MAX_WAITS times a run (then it waits and spends it); a motion not found
+    (randomised) needs no wait."""
     from artiplan.execution.dispatch import Rotate
     from artiplan.execution.loop import ClosedLoop
     from artiplan.execution.refusals import MAX_WAITS, WAIT_S
@@ -423,4 +424,10 @@ def test_a_rotation_refused_again_from_the_same_state_lets_the_chain_settle_firs
         assert loop.log.happenings[-1]["action"] == "(wait)"
     r.relaxed = True
     r.refuse(step, in_time=True)
-    assert not r.waiting and not r.free  # the waits are used up: a re-plan
+    assert r.waiting and not r.free  # the free waits are used up: a re-plan, after a wait
+    t = world.time
+    loop._plan("action failed", counted=True)
+    assert world.time >= t + WAIT_S - 0.01 and not r.waiting
+    r.relaxed = True
+    r.refuse(step, in_time=False)  # no time left: neither a wait nor a free plan
+    assert not r.waiting and not r.free

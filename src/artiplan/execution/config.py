@@ -89,7 +89,7 @@ class LoopConfig:
             The same for a plan that ends short only on goal links such a turn carried (no
             percept judged them after it stopped: the plan ended with it).
         free_refusals: Plans made again after a refused rotation spend no re-plan budget, up
-            to this many a run (``execution.refusals``; 0: they all do).
+            to this many a run (``execution.refusals.MAX_FREE``; 0: they all do).
         compensate_approach: With hands that approach their grasps in simulated time and a
             ``reach_time`` in the encoding: plans start with the hands away (the first grasp
             waits ``reach_time`` too), each start is dispatched ``reach_time`` early, and the
@@ -122,7 +122,7 @@ class LoopConfig:
     capped_time_limit: float = 10.0
     aim: bool = True
     free_carry_replans: int = 10
-    free_refusals: int = 20
+    free_refusals: int = 40
 
     def __post_init__(self) -> None:
         if self.threshold_deg <= 0 or self.accept_deg <= 0 or self.plan_tolerance_deg <= 0:

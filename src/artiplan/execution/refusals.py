@@ -35,14 +35,16 @@ from artiplan.model import ArticulatedObject
 #: A refused rotation: (hold link, rotated link, plane, ``increase`` or ``decrease``).
 Refusal = tuple[str, str, str, str]
 #: At most this many plans a run whose rotation the world refused are planned again without
-#: spending the re-plan budget (12 before refusals after a move were free too; a 6-link run
-#: had up to 16 refusals).
-MAX_FREE = 20
+#: spending the re-plan budget (the default of ``LoopConfig.free_refusals``). 12 before
+#: refusals after a move were free too; 20 until session 20, when 3-4 of the 8-9 failed
+#: 6-link tasks a run had used them all up (a task reached its goal after 25).
+MAX_FREE = 40
 #: At most this many times a run the arms go home when caught (no motion to a grasp found).
 MAX_ESCAPES = 3
 #: A rotation refused again from the state it was refused in (a plan that had to ignore the
-#: refusals) is a dead end for the grasp choice; at most this many times a run the hands
-#: then let go for :data:`WAIT_S` and the chain settles under gravity before planning again.
+#: refusals) is a dead end for the grasp choice: the hands then let go for :data:`WAIT_S`
+#: and the chain settles under gravity before planning again, free of the re-plan budget at
+#: most this many times a run (after that the wait spends a re-plan).
 #: Replayed offline (9 such dead ends of 6-link runs, arms at home; 7 refused again at once):
 #: 3 of the 7 had a free pair after 5 s (goal links moved 0-10 deg), 3 after 15 s.
 MAX_WAITS = 3
@@ -100,9 +102,12 @@ class Refusals:
         # grasp choice is deterministic, so only a motion not found (randomised) may go next
         # time (measured: 20 identical grasp refusals in a row at 4.8-5.1 s of one run),
         # or the same rotation once the chain has settled a little (MAX_WAITS).
-        self.waiting = again and in_time and self.waits < MAX_WAITS
+        # Past MAX_WAITS a dead end still waits, spending the budget: planning again from
+        # the very state refused repeats the refusal (measured: 4 re-plans of a 6-link run
+        # spent at one instant, 128.2 s, each refused again).
+        self.waiting = again and in_time
         self.free = self.count < self.max_free and in_time and (
-            arms_caught or not self.relaxed or self.waiting)
+            arms_caught or not self.relaxed or (self.waiting and self.waits < MAX_WAITS))
         if arms_caught:
             self.caught = self.caught | {refusal(step)}
         self.stuck = arms_caught and self.escapes < MAX_ESCAPES and not self.homeless

@@ -136,7 +136,7 @@ class RunLog:
     #: Planned arm motions (Baxter): wall time [s], dimension (7/14), waypoints, success.
     motions: list[dict[str, Any]] = field(default_factory=list)
     #: Plans made again because the world refused one of the last plan's rotations (not
-    #: re-plans, up to execution.refusals.MAX_FREE a run): time, reason, latency.
+    #: re-plans, up to LoopConfig.free_refusals a run): time, reason, latency.
     refusals: list[dict[str, Any]] = field(default_factory=list)
     #: Plans made again because a link a vertical turn carried was off the prediction when
     #: the turn stopped (not re-plans, up to LoopConfig.free_carry_replans a run).

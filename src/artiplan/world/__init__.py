@@ -10,7 +10,7 @@ from artiplan.model import ArticulatedObject, Configuration
 from artiplan.world.hands import Hands, VirtualHands
 from artiplan.world.perception import Percept, PerceptionConfig
 from artiplan.world.presets import PRESETS, JointPhysics, preset
-from artiplan.world.scene import World, WorldConfig
+from artiplan.world.scene import IMPACT_STOP_M, World, WorldConfig
 from artiplan.world.servo import ServoGains
 
 __all__ = [
@@ -38,12 +38,12 @@ def make_world(
     perception: PerceptionConfig | None = None,
     approach_s: float = 0.0,
     avoid_collisions: bool = True,
-    impact_stop_m: float | None = None,
+    impact_stop_m: float | None = IMPACT_STOP_M,
 ) -> World:
     """A world with named settings: ``preset`` stiff|loose, ``hands`` virtual|baxter
     (``approach_s`` > 0: Baxter's arms move to each grasp in simulated time, along planned
     motions taking at least that many seconds; ``avoid_collisions``: Baxter's grasps and
-    motions collision-free; ``impact_stop_m``: see :class:`WorldConfig`). Baxter serves
+    motions collision-free; ``impact_stop_m``: see :class:`WorldConfig`, None: off). Baxter serves
     objects of up to :data:`artiplan.world.baxter_model.BAXTER_MAX_LINKS` links: a longer one raises
     :class:`artiplan.errors.UsageError`."""
     from artiplan.world.presets import preset as get_preset

@@ -36,6 +36,12 @@ from artiplan.world.rotations import (
 from artiplan.world.servo import Servo, ServoGains
 from artiplan.world.turning import DEFAULT_EXTENT_DEG, EXTRA_DEG, Turn
 
+#: Default of :attr:`WorldConfig.impact_stop_m` for Baxter's worlds (:func:`make_world`) [m].
+#: Measured on 6 links (session 20, benchmarks/RESULTS.md): turns stopped so and resumed by
+#: a re-grasp; without it a turn went on with both grippers pressing L4 10-12 mm deep until
+#: MuJoCo diverged, and grippers pushed neighbouring links 5-10 deg off their goals.
+IMPACT_STOP_M = 0.005
+
 
 @dataclass(frozen=True)
 class WorldConfig:
