@@ -431,3 +431,36 @@ def test_a_rotation_refused_again_from_the_same_state_lets_the_chain_settle_firs
     r.relaxed = True
     r.refuse(step, in_time=False)  # no time left: neither a wait nor a free plan
     assert not r.waiting and not r.free
+
+
+def test_no_arm_motion_and_no_way_home_is_a_dead_end_too() -> None:
+    """Refused for want of an arm motion, with the arms' way home not found either: from the
+    same state nothing changes until time passes (measured: 28 such refusals in a row at one
+    instant of a 4-link run), so the hands let go and the chain settles first; after the
+    wait a way home may be found again."""
+    from artiplan.execution.dispatch import Rotate
+    from artiplan.execution.loop import ClosedLoop
+    from artiplan.execution.refusals import WAIT_S
+    from artiplan.semantics import TimedAction
+    from artiplan.world import make_world
+
+    step = Rotate(TimedAction(1.0, "start-decrease", ("L2", "L3", "z-axis")), "L2", "L3",
+                  "z-axis", -1, 5.0)
+    obj = ArticulatedObject(3)
+    init, target = random_pair(3, random.Random(6))
+    world = make_world(obj, init, hands="virtual", seed=6)
+    loop = ClosedLoop(world, target, LoopConfig(EncodingOptions("ng")), None, 6, None)
+    r = loop.refusals
+    r.refuse(step, in_time=True, arms_caught=True)
+    assert r.free and r.stuck and not r.waiting  # first: the arms go home
+    r.escaped(moved=False)
+    assert r.homeless
+    r.relaxed = True
+    r.refuse(step, in_time=True, arms_caught=True)
+    assert r.free and not r.stuck and r.waiting
+    t = world.time
+    loop._plan("action failed", counted=False)
+    assert world.time >= t + WAIT_S - 0.01 and not r.waiting and not r.homeless
+    r.relaxed = True
+    r.refuse(step, in_time=True, arms_caught=True)  # a way home may be tried again first
+    assert r.stuck and not r.waiting

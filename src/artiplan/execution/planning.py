@@ -180,6 +180,7 @@ class Planning:
         self.world.run_until(t + WAIT_S)
         self.refusals.waiting = False
         self.refusals.waits += 1
+        self.refusals.homeless = False  # the chain has moved: a way home may be found now
         did = f"hands open for {WAIT_S:g} s: the chain settles before planning again"
         self.log.happenings.append({"time": round(t, 4), "plan": len(self.log.plans) - 1,
                                     "action": "(wait)", "ok": True, "did": did})
