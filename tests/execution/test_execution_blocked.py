@@ -440,7 +440,7 @@ def test_no_arm_motion_and_no_way_home_is_a_dead_end_too() -> None:
     wait a way home may be found again."""
     from artiplan.execution.dispatch import Rotate
     from artiplan.execution.loop import ClosedLoop
-    from artiplan.execution.refusals import WAIT_S
+    from artiplan.execution.refusals import MAX_ESCAPES, WAIT_S
     from artiplan.semantics import TimedAction
     from artiplan.world import make_world
 
@@ -464,3 +464,7 @@ def test_no_arm_motion_and_no_way_home_is_a_dead_end_too() -> None:
     r.relaxed = True
     r.refuse(step, in_time=True, arms_caught=True)  # a way home may be tried again first
     assert r.stuck and not r.waiting
+    r.escapes = MAX_ESCAPES  # no escape left: a dead end again, though a way home may exist
+    r.relaxed = True
+    r.refuse(step, in_time=True, arms_caught=True)
+    assert not r.stuck and r.waiting

@@ -95,10 +95,11 @@ class Refusals:
         """The world refused ``step``; ``in_time``: the run still has time to plan again;
         ``arms_caught``: no arm motion to its grasps was found from where the arms are;
         ``blocked``: links it could not grasp in their role, whatever the turn."""
-        # No arm motion found with no way home either (``homeless``) is a dead end too:
-        # nothing moves until time passes (measured: 28 such refusals of one 4-link run
-        # in a row at 59.7 s, then 4 re-plans spent there).
-        again = (self.relaxed and (not arms_caught or self.homeless)
+        # No arm motion found with no way home to try either (none found, or the escapes
+        # used up) is a dead end too: nothing moves until time passes (measured: 27-28 such
+        # refusals of one 4-link run in a row at one instant, then 3-4 re-plans spent there).
+        home_left = self.escapes < MAX_ESCAPES and not self.homeless
+        again = (self.relaxed and (not arms_caught or not home_left)
                  and refusal(step) in self.refused)
         self.refused = self.refused | {refusal(step)}
         self.ungraspable = self.ungraspable | set(blocked)
@@ -114,7 +115,7 @@ class Refusals:
             arms_caught or not self.relaxed or (self.waiting and self.waits < MAX_WAITS))
         if arms_caught:
             self.caught = self.caught | {refusal(step)}
-        self.stuck = arms_caught and self.escapes < MAX_ESCAPES and not self.homeless
+        self.stuck = arms_caught and home_left
 
     def escaped(self, moved: bool) -> None:
         """The arms were sent home (``moved``: they went): the rotations refused for want of
