@@ -62,6 +62,8 @@ def main() -> None:
     ap.add_argument("--impact-stop", type=float, default=None, metavar="MM",
                     help="Baxter: stop a turn on an arm contact deeper than MM [mm] and "
                          "re-grasp (default: make_world's; 0: off)")
+    ap.add_argument("--strain-stop", action="store_true",
+                    help="Baxter: stop a turn when a hand's servo integral reaches its bound")
     ap.add_argument("--max-turn", type=float, default=None,
                     help="plans first sought with turns of at most this [deg] (0: never; "
                          "default: LoopConfig's)")
@@ -120,7 +122,7 @@ def main() -> None:
             task = make_task(args.links, k, seed=args.seed)
             world = make_world(obj, task.initial, preset=args.preset, hands=args.hands, seed=k,
                                approach_s=args.approach,
-                               **impact)
+                               strain_stop=args.strain_stop, **impact)
             t0 = time.perf_counter()
             log = run_loop(world, task.target, config, seed=task.seed)
             row = {"schema": "artiplan.execution-bench/1", "task": k, "success": log.success,
@@ -147,7 +149,8 @@ def main() -> None:
                    "aim": config.aim, "free_carry_replans": config.free_carry_replans,
                    "free_refusals": config.free_refusals, "threshold": config.threshold_deg,
                    "impact_stop_mm": None if world.config.impact_stop_m is None
-                   else 1000.0 * world.config.impact_stop_m}
+                   else 1000.0 * world.config.impact_stop_m,
+                   "strain_stop": world.config.strain_stop}
             rows.append(row)
             if args.logs is not None:
                 args.logs.mkdir(parents=True, exist_ok=True)

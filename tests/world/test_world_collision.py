@@ -162,3 +162,31 @@ def test_baxter_turn_stops_on_impact_when_asked() -> None:
         assert world.turn_limit is not None and "impact" in world.turn_limit[1]
     assert deepest[None] > 0.03
     assert deepest[0.005] < 0.5 * deepest[None]
+
+
+def test_baxter_turn_stops_on_strain_when_asked() -> None:
+    """The scenario above with the impact stop off: the torso holds the right wrist, its
+    servo winds up to its bound, and ``strain_stop`` stops the turn's command there (the arm
+    then goes less deep than without); without it the turn goes on."""
+    deepest = {}
+    for strain in (False, True):
+        rng = random.Random(10)
+        conf = random_configuration(4, rng)
+        world = make_world(ArticulatedObject(4), conf, hands="baxter", preset="stiff", seed=10,
+                           avoid_collisions=False, impact_stop_m=None, strain_stop=strain)
+        k = rng.randint(1, 3)
+        plane = rng.choice(["z-axis", "xy-axes"])
+        sign = rng.choice([1, -1])
+        world.hold_and_rotate(f"L{k}", f"L{k + 1}", plane, sign, 10.0, extent_deg=90)
+        t0 = world.time
+        world.run_until(t0 + 9.0)
+        late = [e.depth_m for e in world.hands.contacts.events if e.start > t0 + 1.0]
+        deepest[strain] = max(late, default=0.0)
+        if not strain:
+            assert not world.impacts
+            continue
+        assert len(world.impacts) == 1
+        when, (hand, what), _ = world.impacts[0]
+        assert hand == "right" and what == "servo bound" and when < t0 + 9.0
+        assert world.turn_limit is not None and "strain" in world.turn_limit[1]
+    assert deepest[True] < deepest[False]

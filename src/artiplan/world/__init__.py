@@ -39,11 +39,13 @@ def make_world(
     approach_s: float = 0.0,
     avoid_collisions: bool = True,
     impact_stop_m: float | None = IMPACT_STOP_M,
+    strain_stop: bool = False,
 ) -> World:
     """A world with named settings: ``preset`` stiff|loose, ``hands`` virtual|baxter
     (``approach_s`` > 0: Baxter's arms move to each grasp in simulated time, along planned
     motions taking at least that many seconds; ``avoid_collisions``: Baxter's grasps and
-    motions collision-free; ``impact_stop_m``: see :class:`WorldConfig`, None: off). Baxter serves
+    motions collision-free; ``impact_stop_m``: see :class:`WorldConfig`, None: off;
+    ``strain_stop``: see :class:`WorldConfig`). Baxter serves
     objects of up to :data:`artiplan.world.baxter_model.BAXTER_MAX_LINKS` links: a longer one raises
     :class:`artiplan.errors.UsageError`."""
     from artiplan.world.presets import preset as get_preset
@@ -65,7 +67,7 @@ def make_world(
             obj,
             conf,
             WorldConfig(config.physics, config.perception, seed, layout=baxter_layout(obj),
-                        impact_stop_m=impact_stop_m),
+                        impact_stop_m=impact_stop_m, strain_stop=strain_stop),
             BaxterHands(approach_s=approach_s, avoid_collisions=avoid_collisions),
         )
     raise ValueError(f"unknown hands {hands!r}; valid: virtual, baxter")

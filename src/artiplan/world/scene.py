@@ -58,6 +58,13 @@ class WorldConfig:
             turns, as a robot's collision detection stops an arm on an unexpected force
             (None: turns go on through contacts). The hands keep holding; the loop re-grasps
             for the rest of the turn (:mod:`artiplan.execution.regrasp`).
+        strain_stop: Stop a turn's command where it is, as at an impact, when a grasping
+            hand's servo integral reaches its bound (:class:`ServoGains`) while the turn
+            runs: the hand cannot follow its command (held by a contact, an arm at a joint
+            limit, or the two grasps fighting through the chain), as a robot's tracking-error
+            limit would. In normal runs the integrals stay below 70% of the bounds; 2 of the
+            3 6-link runs that diverged in sessions 20-21 had a hand's integral at its bound
+            (the third diverged on an approach, holding nothing).
     """
 
     physics: JointPhysics = field(default_factory=lambda: preset("stiff"))
@@ -66,6 +73,7 @@ class WorldConfig:
     servo: ServoGains | None = None
     layout: SceneLayout | None = None
     impact_stop_m: float | None = None
+    strain_stop: bool = False
 
 
 @dataclass
@@ -125,7 +133,8 @@ class World:
         self._reference = self._estimate = conf.wrapped()
         #: (degrees, why) when the last turn stops short of its planned extent (else None).
         self.turn_limit: tuple[float, str] | None = None
-        #: Turns stopped on impact: (time [s], the geoms, depth [m]) (``impact_stop_m``).
+        #: Turns stopped on impact: (time [s], the geoms, depth [m]) (``impact_stop_m``), or
+        #: on strain: (time [s], (hand, "servo bound"), 0.0) (``strain_stop``).
         self.impacts: list[tuple[float, tuple[str, str], float]] = []
         self.set_configuration(conf)
 
@@ -206,6 +215,8 @@ class World:
             self.hands.after_step()
             if self._motion is not None and self.config.impact_stop_m is not None:
                 self._impact_stop(self.config.impact_stop_m)
+            if self._motion is not None and self.config.strain_stop:
+                self._strain_stop()
         # MuJoCo answers a diverging step (bad accelerations) by resetting the whole state:
         # time back to 0, every body at the model's initial pose. Going on from there would
         # act on a world that teleported (measured once on 6 links with Baxter: the loop
@@ -233,6 +244,27 @@ class World:
         self.turn_limit = (math.degrees(done), f"stopped on impact: {pair} "
                            f"{1000 * contacts.deepest_now:.0f} mm at t={self.time:.2f} s")
         self.impacts.append((self.time, contacts.deepest_pair, contacts.deepest_now))
+
+    def _strain_stop(self) -> None:
+        """Stop the turn's command where it is now when a grasping hand's servo integral
+        sits at its bound (``WorldConfig.strain_stop``); recorded in :attr:`impacts`."""
+        m = self._motion
+        assert m is not None
+        done = max(0.0, m.speed_rad_s * (self.time - m.t0))
+        if done >= m.limit_rad:
+            return
+        for hand, (link, _, servo) in sorted(self._goals.items()):
+            g = servo.gains
+            pos = float(np.linalg.norm(servo.int_pos))
+            rot = float(np.linalg.norm(servo.int_rot))
+            if pos < 0.999 * g.max_int_pos and rot < 0.999 * g.max_int_rot:
+                continue
+            m.limit_rad = done
+            self.turn_limit = (math.degrees(done), f"stopped on strain: the {hand} hand on "
+                               f"{link} cannot follow (servo integral {1000 * pos:.0f} mm, "
+                               f"{math.degrees(rot):.0f} deg) at t={self.time:.2f} s")
+            self.impacts.append((self.time, (hand, "servo bound"), 0.0))
+            return
 
     def _divergence_clues(self) -> str:
         """What MuJoCo said about the diverging step (the joint whose acceleration went bad)
