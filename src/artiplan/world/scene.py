@@ -62,9 +62,10 @@ class WorldConfig:
             hand's servo integral reaches its bound (:class:`ServoGains`) while the turn
             runs: the hand cannot follow its command (held by a contact, an arm at a joint
             limit, or the two grasps fighting through the chain), as a robot's tracking-error
-            limit would. In normal runs the integrals stay below 70% of the bounds; 2 of the
-            3 6-link runs that diverged in sessions 20-21 had a hand's integral at its bound
-            (the third diverged on an approach, holding nothing).
+            limit would. 2 of the 3 6-link runs that diverged in sessions 20-21 had a hand's
+            integral at its bound, but on 6 links 21 turns in 20 tasks reached the bound
+            and 12/20 were reached with it against 14-16/20 without (session 21,
+            benchmarks/RESULTS.md): off by default.
     """
 
     physics: JointPhysics = field(default_factory=lambda: preset("stiff"))
