@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 from artiplan.model import ArticulatedObject, Configuration, random_configuration
-from artiplan.world import make_world
+from artiplan.world import World, make_world
 from artiplan.world.collision import ArmGeoms, _pairs, arm_contacts, arm_geoms, clearance
 
 
@@ -131,27 +131,35 @@ def test_baxter_arms_stay_clear_over_a_rotation_that_collided_before() -> None:
         assert dist >= 0.0, f"{hand}: {pair} {dist:.3f} m"
 
 
+def _blind_turn(impact_stop_m: float | None, strain_stop: bool = False
+                ) -> tuple[World, float, float]:
+    """4 links, seed 10, grasps chosen blind (``avoid_collisions=False``): hold L3, rotate L4
+    by -90 deg on xy-axes for 9 s with the world's ``impact_stop_m`` and ``strain_stop``.
+    The world, the turn's start [s] and the deepest arm contact that began over 1 s into it [m]."""
+    rng = random.Random(10)
+    conf = random_configuration(4, rng)
+    world = make_world(ArticulatedObject(4), conf, hands="baxter", preset="stiff", seed=10,
+                       avoid_collisions=False, impact_stop_m=impact_stop_m,
+                       strain_stop=strain_stop)
+    k = rng.randint(1, 3)
+    plane = rng.choice(["z-axis", "xy-axes"])
+    sign = rng.choice([1, -1])
+    world.hold_and_rotate(f"L{k}", f"L{k + 1}", plane, sign, 10.0, extent_deg=90)
+    t0 = world.time
+    world.run_until(t0 + 9.0)
+    late = [e.depth_m for e in world.hands.contacts.events if e.start > t0 + 1.0]
+    return world, t0, max(late, default=0.0)
+
+
 @pytest.mark.slow
 @pytest.mark.ci
 def test_baxter_turn_stops_on_impact_when_asked() -> None:
-    """4 links, seed 10, grasps chosen blind (``avoid_collisions=False``): hold L3, rotate L4
-    by -90 deg on xy-axes drives the right wrist into the torso at ~6.2 s (54 mm deep by
+    """:func:`_blind_turn` drives the right wrist into the torso at ~6.2 s (54 mm deep by
     9 s). With ``impact_stop_m`` the turn's command stops at the first contact deeper than
     that, and the arm goes no deeper than its servo lag carries it."""
     deepest = {}
     for imp in (None, 0.005):
-        rng = random.Random(10)
-        conf = random_configuration(4, rng)
-        world = make_world(ArticulatedObject(4), conf, hands="baxter", preset="stiff", seed=10,
-                           avoid_collisions=False, impact_stop_m=imp)
-        k = rng.randint(1, 3)
-        plane = rng.choice(["z-axis", "xy-axes"])
-        sign = rng.choice([1, -1])
-        world.hold_and_rotate(f"L{k}", f"L{k + 1}", plane, sign, 10.0, extent_deg=90)
-        t0 = world.time
-        world.run_until(t0 + 9.0)
-        late = [e.depth_m for e in world.hands.contacts.events if e.start > t0 + 1.0]
-        deepest[imp] = max(late, default=0.0)
+        world, _, deepest[imp] = _blind_turn(impact_stop_m=imp)
         if imp is None:
             assert not world.impacts
             continue
@@ -165,23 +173,12 @@ def test_baxter_turn_stops_on_impact_when_asked() -> None:
 
 
 def test_baxter_turn_stops_on_strain_when_asked() -> None:
-    """The scenario above with the impact stop off: the torso holds the right wrist, its
+    """:func:`_blind_turn` with the impact stop off: the torso holds the right wrist, its
     servo winds up to its bound, and ``strain_stop`` stops the turn's command there (the arm
     then goes less deep than without); without it the turn goes on."""
     deepest = {}
     for strain in (False, True):
-        rng = random.Random(10)
-        conf = random_configuration(4, rng)
-        world = make_world(ArticulatedObject(4), conf, hands="baxter", preset="stiff", seed=10,
-                           avoid_collisions=False, impact_stop_m=None, strain_stop=strain)
-        k = rng.randint(1, 3)
-        plane = rng.choice(["z-axis", "xy-axes"])
-        sign = rng.choice([1, -1])
-        world.hold_and_rotate(f"L{k}", f"L{k + 1}", plane, sign, 10.0, extent_deg=90)
-        t0 = world.time
-        world.run_until(t0 + 9.0)
-        late = [e.depth_m for e in world.hands.contacts.events if e.start > t0 + 1.0]
-        deepest[strain] = max(late, default=0.0)
+        world, t0, deepest[strain] = _blind_turn(impact_stop_m=None, strain_stop=strain)
         if not strain:
             assert not world.impacts
             continue

@@ -459,7 +459,7 @@ class ClosedLoop(Planning):
             did = (f"re-grasp for the last {remaining:.0f} deg: {did} ({waited:.2f} s, "
                    f"{lost:+.1f} deg behind after it)")
             self._regrasps = r.done + 1
-            self.resume = resume_after(self.world, step, r.speed, pred.t0, r.done + 1)
+            self.resume = resume_after(self.world, step, r.speed, pred.t0, self._regrasps)
         self.log.happenings.append({"time": round(now, 4), "plan": index, "action": label,
                                     "ok": ok, "did": did})
         self.progress(f"t={now:7.2f} s  {label}: {did}")

@@ -230,42 +230,41 @@ class World:
             raise FloatingPointError(f"physics diverged at t = {self.time:.3f} s")
 
     def _impact_stop(self, depth_m: float) -> None:
-        """Stop the turn's command where it is now when an arm went deeper than ``depth_m``
-        [m] into something in the step just taken (``WorldConfig.impact_stop_m``): the turn
-        ends there, as at a :attr:`turn_limit` (:attr:`turn_ends` is now)."""
+        """Stop the turn when an arm went deeper than ``depth_m`` [m] into something in the
+        step just taken (``WorldConfig.impact_stop_m``)."""
         contacts = getattr(self.hands, "contacts", None)
-        m = self._motion
-        if contacts is None or m is None or contacts.deepest_now <= depth_m:
+        if contacts is None or contacts.deepest_now <= depth_m:
             return
-        done = max(0.0, m.speed_rad_s * (self.time - m.t0))
-        if done >= m.limit_rad:
-            return
-        m.limit_rad = done
-        pair = "~".join(contacts.deepest_pair)
-        self.turn_limit = (math.degrees(done), f"stopped on impact: {pair} "
-                           f"{1000 * contacts.deepest_now:.0f} mm at t={self.time:.2f} s")
-        self.impacts.append((self.time, contacts.deepest_pair, contacts.deepest_now))
+        self._stop_turn(f"stopped on impact: {'~'.join(contacts.deepest_pair)} "
+                        f"{1000 * contacts.deepest_now:.0f} mm",
+                        contacts.deepest_pair, contacts.deepest_now)
 
     def _strain_stop(self) -> None:
-        """Stop the turn's command where it is now when a grasping hand's servo integral
-        sits at its bound (``WorldConfig.strain_stop``); recorded in :attr:`impacts`."""
-        m = self._motion
-        assert m is not None
-        done = max(0.0, m.speed_rad_s * (self.time - m.t0))
-        if done >= m.limit_rad:
-            return
+        """Stop the turn when a grasping hand's servo integral sits at its bound
+        (``WorldConfig.strain_stop``)."""
         for hand, (link, _, servo) in sorted(self._goals.items()):
             g = servo.gains
             pos = float(np.linalg.norm(servo.int_pos))
             rot = float(np.linalg.norm(servo.int_rot))
             if pos < 0.999 * g.max_int_pos and rot < 0.999 * g.max_int_rot:
                 continue
-            m.limit_rad = done
-            self.turn_limit = (math.degrees(done), f"stopped on strain: the {hand} hand on "
-                               f"{link} cannot follow (servo integral {1000 * pos:.0f} mm, "
-                               f"{math.degrees(rot):.0f} deg) at t={self.time:.2f} s")
-            self.impacts.append((self.time, (hand, "servo bound"), 0.0))
+            self._stop_turn(f"stopped on strain: the {hand} hand on {link} cannot follow "
+                            f"(servo integral {1000 * pos:.0f} mm, {math.degrees(rot):.0f} deg)",
+                            (hand, "servo bound"), 0.0)
             return
+
+    def _stop_turn(self, why: str, what: tuple[str, str], depth_m: float) -> None:
+        """Stop the turn's command where it is now, unless it has already ended there: the
+        turn ends as at a :attr:`turn_limit` (:attr:`turn_ends` is now), recorded in
+        :attr:`impacts` with ``what`` and ``depth_m`` [m]."""
+        m = self._motion
+        assert m is not None
+        done = max(0.0, m.speed_rad_s * (self.time - m.t0))
+        if done >= m.limit_rad:
+            return
+        m.limit_rad = done
+        self.turn_limit = (math.degrees(done), f"{why} at t={self.time:.2f} s")
+        self.impacts.append((self.time, what, depth_m))
 
     def _divergence_clues(self) -> str:
         """What MuJoCo said about the diverging step (the joint whose acceleration went bad)
