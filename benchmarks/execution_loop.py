@@ -64,6 +64,9 @@ def main() -> None:
                          "re-grasp (default: make_world's; 0: off)")
     ap.add_argument("--strain-stop", action="store_true",
                     help="Baxter: stop a turn when a hand's servo integral reaches its bound")
+    ap.add_argument("--stall-deg", type=float, default=None,
+                    help="a turn whose link lags it by this much [deg] when the monitor "
+                         "fires is refused from there (default: LoopConfig's; 0: off)")
     ap.add_argument("--max-turn", type=float, default=None,
                     help="plans first sought with turns of at most this [deg] (0: never; "
                          "default: LoopConfig's)")
@@ -111,6 +114,8 @@ def main() -> None:
         config = replace(config, free_refusals=args.free_refusals)
     if args.threshold is not None:
         config = replace(config, threshold_deg=args.threshold)
+    if args.stall_deg is not None:
+        config = replace(config, stall_deg=args.stall_deg or None)
     if args.max_replans is not None:
         config = replace(config, max_replans=args.max_replans)
     impact = {} if args.impact_stop is None else {
@@ -134,6 +139,8 @@ def main() -> None:
                                    if h["action"].endswith("resumed")),
                    "impact_stops": sum(h["action"].endswith("stopped")
                                        for h in log.happenings),
+                   "stalls": sum("stalled" in r["reason"]
+                                 for r in log.replans + log.refusals),
                    "collisions": len(log.collisions),
                    "latency_wall_s": [r["latency_wall_s"] for r in log.replans],
                    "sim_s": round(log.final["time"] if log.final.get("error")
@@ -150,7 +157,7 @@ def main() -> None:
                    "free_refusals": config.free_refusals, "threshold": config.threshold_deg,
                    "impact_stop_mm": None if world.config.impact_stop_m is None
                    else 1000.0 * world.config.impact_stop_m,
-                   "strain_stop": world.config.strain_stop}
+                   "strain_stop": world.config.strain_stop, "stall_deg": config.stall_deg}
             rows.append(row)
             if args.logs is not None:
                 args.logs.mkdir(parents=True, exist_ok=True)

@@ -468,3 +468,47 @@ def test_no_arm_motion_and_no_way_home_is_a_dead_end_too() -> None:
     r.relaxed = True
     r.refuse(step, in_time=True, arms_caught=True)
     assert not r.stuck and r.waiting
+
+
+def test_a_turn_its_link_does_not_follow_is_refused_without_spending_a_replan() -> None:
+    from artiplan.world import make_world
+
+    obj = ArticulatedObject(3)
+    init, target = random_pair(3, random.Random(6))
+    world = make_world(obj, init, hands="virtual", seed=6)
+    slowed: list[tuple[str, str, str, int]] = []
+    real = world.hold_and_rotate
+
+    def first_turn_stalls(hold: str, turn: str, plane: str, direction: int,
+                          speed_deg_s: float = 10.0, *args: Any, **kwargs: Any) -> None:
+        if not slowed:  # the first rotation's link follows its hand at a tenth of the speed
+            slowed.append((hold, turn, plane, direction))
+            speed_deg_s *= 0.1
+        real(hold, turn, plane, direction, speed_deg_s, *args, **kwargs)
+
+    world.hold_and_rotate = first_turn_stalls  # type: ignore[method-assign]
+    log = run_loop(world, target, LoopConfig(EncodingOptions("ng")), seed=6)
+    hold, turn, plane, direction = slowed[0]
+    start = f"(start-{'increase' if direction > 0 else 'decrease'} {hold} {turn} {plane})"
+    stalled = [r for r in log.refusals if "stalled" in r["reason"]]
+    assert stalled and stalled[0]["reason"].startswith(f"{turn} off the prediction")
+    assert f"{start} stalled" in stalled[0]["reason"]
+    assert not any("stalled" in r["reason"] for r in log.replans)
+    # The next plan does not start with the stalled rotation (its pair has not moved enough).
+    second = [a["action"] for a in log.plans[1]["actions"]]
+    assert second and second[0] != start
+    assert log.success
+
+    # Off (stall_deg None): the same lag is an ordinary re-plan.
+    world = make_world(obj, init, hands="virtual", seed=6)
+    real = world.hold_and_rotate
+    slowed.clear()
+    world.hold_and_rotate = first_turn_stalls  # type: ignore[method-assign]
+    log = run_loop(world, target, LoopConfig(EncodingOptions("ng"), stall_deg=None), seed=6)
+    assert not any("stalled" in r["reason"] for r in log.refusals + log.replans)
+    assert log.replans and log.replans[0]["reason"].startswith(f"{turn} off the prediction")
+
+
+def test_stall_deg_must_be_positive() -> None:
+    with pytest.raises(ValueError, match="stall_deg"):
+        LoopConfig(stall_deg=0.0)

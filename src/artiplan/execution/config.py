@@ -90,6 +90,14 @@ class LoopConfig:
             percept judged them after it stopped: the plan ended with it).
         free_refusals: Plans made again after a refused rotation spend no re-plan budget, up
             to this many a run (``execution.refusals.MAX_FREE``; 0: they all do).
+        stall_deg: When the monitor fires on the link a turn in progress rotates, lagging
+            that turn by at least this much [deg] along its plane, the turn is taken as
+            refused from there (``execution.refusals``): the link does not follow the hand
+            (it meets the chain or the scene, or the arms stopped it short for good), so the
+            next plans turn it so only once its pair has moved, and planning again is free
+            of the budget like any refusal. Without this the same turn was planned again
+            and stalled at the same angle (measured: one 6-link task spent 3 of its 5
+            re-plans on L5 stalling at 111 deg). None: such a lag is a re-plan like any.
         compensate_approach: With hands that approach their grasps in simulated time and a
             ``reach_time`` in the encoding: plans start with the hands away (the first grasp
             waits ``reach_time`` too), each start is dispatched ``reach_time`` early, and the
@@ -123,10 +131,13 @@ class LoopConfig:
     aim: bool = True
     free_carry_replans: int = 10
     free_refusals: int = 40
+    stall_deg: float | None = 6.0
 
     def __post_init__(self) -> None:
         if self.threshold_deg <= 0 or self.accept_deg <= 0 or self.plan_tolerance_deg <= 0:
             raise ValueError("threshold, acceptance and planning tolerances must be positive")
+        if self.stall_deg is not None and self.stall_deg <= 0:
+            raise ValueError("stall_deg must be positive (None: off)")
         if self.monitor_dt <= 0:
             raise ValueError("monitor_dt must be positive")
         if self.max_replans < 0 or self.free_carry_replans < 0 or self.free_refusals < 0:

@@ -39,7 +39,14 @@ from artiplan.execution.planning import Planning
 from artiplan.execution.predict import Prediction
 from artiplan.execution.problem import canonical
 from artiplan.execution.refusals import Refusals
-from artiplan.execution.regrasp import Ahead, Resume, align, aligned_ahead, resume_after
+from artiplan.execution.regrasp import (
+    Ahead,
+    Resume,
+    align,
+    aligned_ahead,
+    behind_deg,
+    resume_after,
+)
 from artiplan.execution.runlog import RunLog, conf_dict
 from artiplan.model import Configuration
 
@@ -260,6 +267,11 @@ class ClosedLoop(Planning):
             self.progress(f"t={self.world.time:7.2f} s  executing plan {index}: {done} of "
                           f"{total} actions dispatched, still monitoring")
 
+    def _may_end_plan(self) -> bool:
+        """Whether the failure just seen may end the plan: planning again is free of the
+        budget (a carried link's error, a refusal: a stalled turn's too) or within it."""
+        return self.carry_free or self.refusals.free or self._may_replan()
+
     def _may_replan(self) -> bool:
         return self.config.replan and self.replans < self.config.max_replans \
             and self.world.time < self.config.max_time
@@ -295,16 +307,16 @@ class ClosedLoop(Planning):
             self._ahead = self._turns_ahead(actions[i:], pred)
             if t_res <= now + tol and (i >= len(actions) or t_act > now + tol):
                 reason = self._observe(pred, index, "happening")
-                if reason is not None and (self.carry_free or self._may_replan()):
+                if reason is not None and self._may_end_plan():
                     return reason
                 failure = self._regrasp(pred, index)
-                if failure is not None and self._may_replan():
+                if failure is not None and self._may_end_plan():
                     return failure
                 next_mon = self.world.time
                 continue
             happening = i < len(actions) and t_act <= now + tol
             reason = self._observe(pred, index, "happening" if happening else "monitor")
-            if reason is not None and (self.carry_free or self._may_replan()):
+            if reason is not None and self._may_end_plan():
                 return reason
             if happening:
                 while i < len(actions) and self._due(actions[i], pred) <= now + tol:
@@ -346,7 +358,27 @@ class ClosedLoop(Planning):
                 and now < self.config.max_time):
             self.carry_free = True
             reason += " when the vertical turn carrying it stopped"
+        else:
+            reason += self._stalled(verdict.worst_link, judged, percept.configuration)
         return reason
+
+    def _stalled(self, link: str, predicted: Configuration, seen: Configuration) -> str:
+        """The monitor fired on ``link``: when the turn in progress rotates it and it lags
+        that turn by ``LoopConfig.stall_deg`` or more along its plane, the turn is refused
+        from here (closed first, so that what it did turn unlocks what it should, then
+        refused: :meth:`Refusals.refuse`). What to add to the reason, or ''."""
+        if self.config.stall_deg is None or self._turn is None:
+            return ""
+        step = self._turn[0]
+        if step.turn != link:
+            return ""
+        lag = behind_deg(step, predicted, seen, self.obj.index(link))
+        if lag < self.config.stall_deg:
+            return ""
+        self._turn_close()
+        self.refusals.refuse(step, self.world.time < self.config.max_time)
+        return (f"; {step.action.signature} stalled {lag:.1f} deg behind its turn, "
+                "refused from here")
 
     def _turns_ahead(self, steps: list[Step], pred: Prediction) -> Ahead:
         """The next turn of each (link, plane) still to start (a pending re-grasp first,
