@@ -487,7 +487,7 @@ def test_a_turn_its_link_does_not_follow_is_refused_without_spending_a_replan() 
         real(hold, turn, plane, direction, speed_deg_s, *args, **kwargs)
 
     world.hold_and_rotate = first_turn_stalls  # type: ignore[method-assign]
-    log = run_loop(world, target, LoopConfig(EncodingOptions("ng")), seed=6)
+    log = run_loop(world, target, LoopConfig(EncodingOptions("ng"), stall_deg=6.0), seed=6)
     hold, turn, plane, direction = slowed[0]
     start = f"(start-{'increase' if direction > 0 else 'decrease'} {hold} {turn} {plane})"
     stalled = [r for r in log.refusals if "stalled" in r["reason"]]
@@ -499,7 +499,7 @@ def test_a_turn_its_link_does_not_follow_is_refused_without_spending_a_replan() 
     assert second and second[0] != start
     assert log.success
 
-    # Off (stall_deg None): the same lag is an ordinary re-plan.
+    # Off (stall_deg None, the default): the same lag is an ordinary re-plan.
     world = make_world(obj, init, hands="virtual", seed=6)
     real = world.hold_and_rotate
     slowed.clear()
