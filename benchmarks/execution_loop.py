@@ -45,7 +45,8 @@ def main() -> None:
     ap.add_argument("--fall", choices=("uniform", "torque"), default="uniform",
                     help="UCM's fall speeds (EncodingOptions.fall)")
     ap.add_argument("--max-replans", type=int, default=None,
-                    help="re-plan budget of a run (default: LoopConfig's)")
+                    help="re-plan budget of a run (default: LoopConfig.budget, "
+                         "5 up to 4 links, 8 on 6)")
     ap.add_argument("--no-monitor-ahead", action="store_true",
                     help="judge every offset, also those a turn ahead aligns away")
     ap.add_argument("--no-aim", action="store_true",
@@ -151,7 +152,7 @@ def main() -> None:
                    "hands": world.hands.kind, "model": args.model, "preset": args.preset,
                    "approach_s": args.approach, "reach_time": reach,
                    "compensate": not args.no_compensate, "carry": args.carry, "fall": args.fall,
-                   "max_replans": config.max_replans, "monitor_ahead": config.monitor_ahead,
+                   "max_replans": config.budget(args.links), "monitor_ahead": config.monitor_ahead,
                    "fallback": config.fallback_model, "max_turn_deg": config.max_turn_deg,
                    "aim": config.aim, "free_carry_replans": config.free_carry_replans,
                    "free_refusals": config.free_refusals, "threshold": config.threshold_deg,

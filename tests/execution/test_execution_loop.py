@@ -50,7 +50,7 @@ def test_loop_reaches_a_three_link_goal(model: str) -> None:
     cfg = LoopConfig(EncodingOptions(model, speed_g=0.9))
     log = run_loop(world, target, cfg, seed=6)
     assert log.success
-    assert len(log.replans) <= cfg.max_replans
+    assert len(log.replans) <= cfg.budget(3)
     assert log.final["max_goal_error"] <= cfg.accept_deg
     # The goal really holds in the world (ground truth), not only in the percept.
     truth = world.true_configuration()
@@ -253,3 +253,13 @@ def test_a_plan_ending_with_a_carried_goal_link_off_is_planned_again_for_free() 
     assert loop._missed_carried() == "L3, L5" and loop.carry_free
     loop.carry_free, loop.carry_count = False, loop.config.free_carry_replans
     assert loop._missed_carried() == "" and not loop.carry_free  # the free ones are used up
+
+
+def test_the_replan_budget_grows_with_the_chain_unless_it_is_set() -> None:
+    cfg = LoopConfig(EncodingOptions("ng"))
+    assert [cfg.budget(n) for n in (3, 4, 5, 6, 8, 12)] == [5, 5, 7, 8, 10, 15]
+    fixed = LoopConfig(EncodingOptions("ng"), max_replans=2)
+    assert fixed.budget(3) == fixed.budget(12) == 2
+    assert LoopConfig(EncodingOptions("ng"), max_replans=0).budget(6) == 0
+    with pytest.raises(ValueError, match="max_replans"):
+        LoopConfig(EncodingOptions("ng"), max_replans=-1)

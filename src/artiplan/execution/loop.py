@@ -273,7 +273,7 @@ class ClosedLoop(Planning):
         return self.carry_free or self.refusals.free or self._may_replan()
 
     def _may_replan(self) -> bool:
-        return self.config.replan and self.replans < self.config.max_replans \
+        return self.config.replan and self.replans < self.config.budget(self.obj.n_links) \
             and self.world.time < self.config.max_time
 
     # -- execution ------------------------------------------------------------------------
