@@ -153,7 +153,7 @@ class LoopConfig:
         """Re-plans a run may spend on a chain of ``n_links`` links: ``max_replans``, or by
         default ``max(5, ceil(1.25 n))``. Longer chains carry more links through each turn and
         the monitor fires more often just past its threshold: on 6 links with Baxter, 5 re-plans
-        reached 14-16/20 seeded tasks, 8 reached 16/20 (session 23, RESULTS.md)."""
+        reached 14-16/20 seeded tasks, 8 reached 16/20 and 17/20 (session 23, RESULTS.md)."""
         if self.max_replans is not None:
             return self.max_replans
         return max(5, math.ceil(1.25 * n_links))
