@@ -68,6 +68,9 @@ def main() -> None:
     ap.add_argument("--stall-deg", type=float, default=None,
                     help="a turn whose link lags it by this much [deg] when the monitor "
                          "fires is refused from there (default: LoopConfig's; 0: off)")
+    ap.add_argument("--align-ahead", action="store_true",
+                    help="a link ahead of its turn at the grasp is aligned on as far as the "
+                         "turn has left, not only 15 deg (LoopConfig.align_ahead)")
     ap.add_argument("--max-turn", type=float, default=None,
                     help="plans first sought with turns of at most this [deg] (0: never; "
                          "default: LoopConfig's)")
@@ -117,6 +120,8 @@ def main() -> None:
         config = replace(config, threshold_deg=args.threshold)
     if args.stall_deg is not None:
         config = replace(config, stall_deg=args.stall_deg or None)
+    if args.align_ahead:
+        config = replace(config, align_ahead=True)
     if args.max_replans is not None:
         config = replace(config, max_replans=args.max_replans)
     impact = {} if args.impact_stop is None else {
@@ -158,7 +163,8 @@ def main() -> None:
                    "free_refusals": config.free_refusals, "threshold": config.threshold_deg,
                    "impact_stop_mm": None if world.config.impact_stop_m is None
                    else 1000.0 * world.config.impact_stop_m,
-                   "strain_stop": world.config.strain_stop, "stall_deg": config.stall_deg}
+                   "strain_stop": world.config.strain_stop, "stall_deg": config.stall_deg,
+                   "align_ahead": config.align_ahead}
             rows.append(row)
             if args.logs is not None:
                 args.logs.mkdir(parents=True, exist_ok=True)

@@ -135,3 +135,64 @@ def test_a_small_push_on_a_link_the_plan_turns_later_needs_no_re_plan() -> None:
     assert runs[True].success and not runs[True].replans
     assert any("aligned_ahead" in s for s in runs[True].samples)
     assert runs[False].replans and "L3 off the prediction" in runs[False].replans[0]["reason"]
+
+
+def test_a_held_link_ahead_of_its_turn_is_aligned_up_to_what_is_left_of_the_turn() -> None:
+    """With ``align_ahead``, at the grasp a link ahead of its turn is aligned as far as the
+    turn has left (to its stop, or to the plan's end for a turn the plan never stops; less
+    MIN_REMAINING_DEG), beyond MAX_LOST_DEG: the plan's clock moves on by that much and the
+    prediction then has the link where it is seen. Behind stays capped at MAX_LOST_DEG, and
+    without the option ahead is too."""
+    from artiplan.backends import get_planner
+    from artiplan.encoding import domain_pddl, make_goal
+    from artiplan.encoding.suite import make_task
+    from artiplan.execution.dispatch import plan_steps
+    from artiplan.execution.predict import Prediction
+    from artiplan.execution.problem import build_problem
+    from artiplan.execution.regrasp import MIN_REMAINING_DEG, align
+    from artiplan.world import make_world
+
+    obj = ArticulatedObject(4)
+    task = make_task(4, 1, seed=7)
+    enc = EncodingOptions("ucm", speed_g=0.948)
+    goal = make_goal(obj, task.target, "window", 1, planes=enc.planes, tolerance=1.5)
+    result = get_planner("artiplan").plan(
+        domain_pddl(obj, enc), build_problem(obj, task.initial, task.target, enc, goal),
+        time_limit=60)
+    assert result.plan is not None and result.trajectory is not None
+    trajectory = result.trajectory
+    assert trajectory.end is not None
+    speed = 10.0
+    turns = [s for s in plan_steps(result.plan, obj) if isinstance(s, Rotate)]
+    # One the plan stops and one it never stops (seed 7: a vertical turn, then one about the
+    # vertical to the plan's end).
+    assert {s.duration is None for s in turns} == {True, False}
+    for step in turns:
+        stop = step.action.time + (step.duration if step.duration is not None
+                                   else trajectory.end)
+        extent = speed * (stop - step.action.time)
+        assert extent > MAX_LOST_DEG + 10.0, "a turn too short to test on"
+        j = obj.index(step.turn)
+
+        def aligned(offset: float, ahead_to_end: bool = True, step: Rotate = step, j: int = j
+                    ) -> tuple[float, Prediction, Configuration]:
+            """(align's answer, the prediction after it, what was set): the world at the
+            turn's start, the link ``offset`` deg ahead of the prediction along the turn."""
+            pred = Prediction(obj, trajectory, -float(step.action.time), task.initial)
+            at = pred.at(0.0)
+            angles = list(at.theta if step.plane == "xy-axes" else at.gamma)
+            angles[j - 1] = (angles[j - 1] + step.direction * offset) % 360.0
+            conf = (Configuration(tuple(angles), at.gamma) if step.plane == "xy-axes"
+                    else Configuration(at.theta, tuple(angles)))
+            return align(make_world(obj, conf), step, pred, speed, ahead_to_end), pred, conf
+
+        # The default (LoopConfig.align_ahead off): ahead too only up to MAX_LOST_DEG.
+        assert aligned(MAX_LOST_DEG + 10.0, ahead_to_end=False)[0] == -MAX_LOST_DEG
+
+        far = min(MAX_LOST_DEG + 10.0, extent - MIN_REMAINING_DEG - 2.0)
+        behind, pred, conf = aligned(far)
+        assert abs(behind + far) < 1.5, step  # all of it, not only MAX_LOST_DEG
+        assert abs(signed_delta_deg(pred.at(0.0).angle(j, step.plane),
+                                    conf.angle(j, step.plane))) < 1.5
+        behind, _, _ = aligned(-(MAX_LOST_DEG + 10.0))
+        assert behind == MAX_LOST_DEG

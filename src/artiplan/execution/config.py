@@ -103,6 +103,15 @@ class LoopConfig:
             like any. Off because measured worse: with 6.0, 20 seeded 6-link Baxter tasks
             reached at most 12/20 (17 of them run: 9 reached; 0-3 stalls a task, most
             failures elsewhere) where the same code without it reached 14-16/20.
+        align_ahead: A rotated link found ahead of its turn at the grasp is aligned on as
+            far as the turn has left (:func:`artiplan.execution.regrasp.align`), not only
+            MAX_LOST_DEG, as the monitor let that offset pass before the grasp. False (the
+            default): up to MAX_LOST_DEG either way. Off because not shown better: on 4
+            links it took the re-plan that followed such grasps of task 13 but not the
+            task (19/20 plain, 18/20 with the push, as without it); on 6 links it acted 10
+            times in 20 tasks, 9 of them with no re-plan within 10 s, and the run reached
+            14/20 where the same code without it reached 16-17/20 (session 24,
+            RESULTS.md; runs differ by 1-3 tasks on unchanged code).
         compensate_approach: With hands that approach their grasps in simulated time and a
             ``reach_time`` in the encoding: plans start with the hands away (the first grasp
             waits ``reach_time`` too), each start is dispatched ``reach_time`` early, and the
@@ -137,6 +146,7 @@ class LoopConfig:
     free_carry_replans: int = 10
     free_refusals: int = 40
     stall_deg: float | None = None
+    align_ahead: bool = False
 
     def __post_init__(self) -> None:
         if self.threshold_deg <= 0 or self.accept_deg <= 0 or self.plan_tolerance_deg <= 0:

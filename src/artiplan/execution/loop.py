@@ -440,7 +440,7 @@ class ClosedLoop(Planning):
 
     def _align(self, step: Rotate, pred: Prediction, speed: float) -> float:
         """:func:`artiplan.execution.regrasp.align` on this run's world."""
-        return align(self.world, step, pred, speed)
+        return align(self.world, step, pred, speed, self.config.align_ahead)
 
     def _speed(self, step: Rotate) -> float:
         """The rotation speed [deg/s] of ``step`` (the encoding's speed-i or speed-d)."""

@@ -87,18 +87,18 @@ def resume_after(world: World, step: Rotate, speed: float, t0: float, done: int 
 
 
 def behind_deg(step: Rotate, predicted: Configuration, perceived: Configuration,
-               index: int) -> float:
+               index: int, ahead_max: float = MAX_LOST_DEG) -> float:
     """How far [deg] the rotated link (1-based ``index``) is behind ``predicted`` along
     ``step``'s turn in ``perceived`` (covers chosen near the prediction): negative when it
-    is ahead, within +-MAX_LOST_DEG; 0 for a turn about the vertical of a link within
-    POLE_DEG of it (its azimuth is not observable there)."""
+    is ahead, within -``ahead_max`` and MAX_LOST_DEG; 0 for a turn about the vertical of a
+    link within POLE_DEG of it (its azimuth is not observable there)."""
     if step.plane == HORIZONTAL_PLANE:
         g = perceived.angle(index, VERTICAL_PLANE)
         if abs(math.sin(math.radians(g))) < math.sin(math.radians(POLE_DEG)):
             return 0.0
     behind = step.direction * signed_delta_deg(perceived.angle(index, step.plane),
                                                predicted.angle(index, step.plane))
-    return min(max(behind, -MAX_LOST_DEG), MAX_LOST_DEG)
+    return min(max(behind, -ahead_max), MAX_LOST_DEG)
 
 
 #: The next turn of each (1-based link index, plane) still ahead in a plan: (its direction, +1
@@ -135,17 +135,33 @@ def aligned_ahead(predicted: Configuration, perceived: Configuration,
     return Configuration(tuple(theta), tuple(gamma)), notes
 
 
-def align(world: World, step: Rotate, pred: Prediction, speed: float) -> float:
+def align(world: World, step: Rotate, pred: Prediction, speed: float,
+          ahead_to_end: bool = False) -> float:
     """Shift the plan's clock (``pred.t0``) so the turn ``step`` starting now at ``speed``
     [deg/s] ends where the plan says on its plane; returns how far [deg] the link was behind
     the prediction (negative: ahead). A link behind is predicted where it is until it has
     caught the plan up (:meth:`Prediction.fade`; rigidly with it the links tip-ward of it on a
-    turn about the vertical), so the monitor does not take the catch-up for a deviation."""
+    turn about the vertical), so the monitor does not take the catch-up for a deviation.
+
+    Behind and ahead are aligned up to MAX_LOST_DEG. With ``ahead_to_end``
+    (``LoopConfig.align_ahead``), ahead up to what is left of the turn (to the plan's stop,
+    or to the plan's end for a turn it never stops) less MIN_REMAINING_DEG, as the monitor
+    let the offset pass before the grasp (:func:`aligned_ahead`): the link is held now and
+    cannot run further ahead. Why: in four runs of 4-link task 13, 6 grasps of L3 found it
+    15 deg or more ahead of a turn its plan never stops, and 3 of them were followed within
+    7 s by a re-plan (L3 off the prediction by 8.7-10.0 deg). Off by default: see
+    ``LoopConfig.align_ahead`` for what it measured."""
     now = world.time
     predicted = pred.at(now)
     seen = world.perceive(reference=predicted).configuration
     j = world.obj.index(step.turn)
-    behind = behind_deg(step, predicted, seen, j)
+    # What is left of the turn [deg]: to the plan's stop, or to its end when it never stops.
+    stop = (step.action.time + step.duration if step.duration is not None
+            else pred.trajectory.end)
+    ahead_max = MAX_LOST_DEG
+    if ahead_to_end and stop is not None:
+        ahead_max = max(MAX_LOST_DEG, speed * (pred.t0 + stop - now) - MIN_REMAINING_DEG)
+    behind = behind_deg(step, predicted, seen, j, ahead_max)
     pred.t0 += behind / speed
     if behind > 0.0:
         off = signed_delta_deg(pred.at(now).angle(j, step.plane), seen.angle(j, step.plane))
