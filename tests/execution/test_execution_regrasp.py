@@ -64,11 +64,12 @@ def test_resume_remaining_and_lost() -> None:
                - 10.0) < 1e-9
 
 
-def test_a_fade_predicts_a_link_where_it_was_seen_until_the_turn_catches_up() -> None:
+def _seed7_plan() -> tuple[ArticulatedObject, Any, Any]:
+    """(object, task, planner result) of seeded 4-link task 1 (seed 7) planned in UCM: a
+    vertical turn the plan stops, then a turn about the vertical to the plan's end."""
     from artiplan.backends import get_planner
     from artiplan.encoding import domain_pddl, make_goal
     from artiplan.encoding.suite import make_task
-    from artiplan.execution.predict import Prediction
     from artiplan.execution.problem import build_problem
 
     obj = ArticulatedObject(4)
@@ -78,6 +79,13 @@ def test_a_fade_predicts_a_link_where_it_was_seen_until_the_turn_catches_up() ->
     result = get_planner("artiplan").plan(
         domain_pddl(obj, enc), build_problem(obj, task.initial, task.target, enc, goal),
         time_limit=60)
+    return obj, task, result
+
+
+def test_a_fade_predicts_a_link_where_it_was_seen_until_the_turn_catches_up() -> None:
+    from artiplan.execution.predict import Prediction
+
+    obj, task, result = _seed7_plan()
     assert result.trajectory is not None
     pred = Prediction(obj, result.trajectory, 2.0, task.initial)
     plain = [pred.at(t) for t in (3.0, 4.0, 5.0, 6.0)]
@@ -143,29 +151,18 @@ def test_a_held_link_ahead_of_its_turn_is_aligned_up_to_what_is_left_of_the_turn
     MIN_REMAINING_DEG), beyond MAX_LOST_DEG: the plan's clock moves on by that much and the
     prediction then has the link where it is seen. Behind stays capped at MAX_LOST_DEG, and
     without the option ahead is too."""
-    from artiplan.backends import get_planner
-    from artiplan.encoding import domain_pddl, make_goal
-    from artiplan.encoding.suite import make_task
     from artiplan.execution.dispatch import plan_steps
     from artiplan.execution.predict import Prediction
-    from artiplan.execution.problem import build_problem
     from artiplan.execution.regrasp import MIN_REMAINING_DEG, align
     from artiplan.world import make_world
 
-    obj = ArticulatedObject(4)
-    task = make_task(4, 1, seed=7)
-    enc = EncodingOptions("ucm", speed_g=0.948)
-    goal = make_goal(obj, task.target, "window", 1, planes=enc.planes, tolerance=1.5)
-    result = get_planner("artiplan").plan(
-        domain_pddl(obj, enc), build_problem(obj, task.initial, task.target, enc, goal),
-        time_limit=60)
+    obj, task, result = _seed7_plan()
     assert result.plan is not None and result.trajectory is not None
     trajectory = result.trajectory
     assert trajectory.end is not None
     speed = 10.0
     turns = [s for s in plan_steps(result.plan, obj) if isinstance(s, Rotate)]
-    # One the plan stops and one it never stops (seed 7: a vertical turn, then one about the
-    # vertical to the plan's end).
+    # One the plan stops and one it never stops (_seed7_plan).
     assert {s.duration is None for s in turns} == {True, False}
     for step in turns:
         stop = step.action.time + (step.duration if step.duration is not None

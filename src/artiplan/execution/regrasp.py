@@ -155,12 +155,12 @@ def align(world: World, step: Rotate, pred: Prediction, speed: float,
     predicted = pred.at(now)
     seen = world.perceive(reference=predicted).configuration
     j = world.obj.index(step.turn)
-    # What is left of the turn [deg]: to the plan's stop, or to its end when it never stops.
-    stop = (step.action.time + step.duration if step.duration is not None
-            else pred.trajectory.end)
     ahead_max = MAX_LOST_DEG
-    if ahead_to_end and stop is not None:
-        ahead_max = max(MAX_LOST_DEG, speed * (pred.t0 + stop - now) - MIN_REMAINING_DEG)
+    if ahead_to_end:  # what is left of the turn: to the plan's stop, or to its end
+        stop = (step.action.time + step.duration if step.duration is not None
+                else pred.trajectory.end)
+        if stop is not None:
+            ahead_max = max(MAX_LOST_DEG, speed * (pred.t0 + stop - now) - MIN_REMAINING_DEG)
     behind = behind_deg(step, predicted, seen, j, ahead_max)
     pred.t0 += behind / speed
     if behind > 0.0:
