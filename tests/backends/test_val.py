@@ -142,3 +142,67 @@ def test_val_accepts_two_wraps_a_rounding_error_apart(l3: float, tmp_path: Path)
     assert verdict.verdict == "valid", verdict.reason
     report = validate(load_task(domain.read_text(), problem.read_text()), parse_plan(text))
     assert report.valid, report.reason
+
+
+def test_val_accepts_a_plan_around_refusals(tmp_path: Path) -> None:
+    """The loop's refusals domain (``turned-enough``, ``turned-far``, conditional unlocks):
+    stock VAL reads it and accepts the plan that turns L2 far enough to free L3."""
+    from artiplan.backends import get_planner
+    from artiplan.encoding import EncodingOptions, domain_pddl, make_goal
+    from artiplan.encoding.suite import make_task
+    from artiplan.execution.problem import build_problem
+    from artiplan.model import ArticulatedObject
+
+    obj = ArticulatedObject(4)
+    task = make_task(4, 1, seed=7)
+    enc = EncodingOptions("ucm", speed_g=0.948, reach_time=3.178, refusals=True)
+    goal = make_goal(obj, task.target, "window", 1, planes=enc.planes, tolerance=1.5)
+    domain, problem = tmp_path / "d.pddl", tmp_path / "p.pddl"
+    domain.write_text(domain_pddl(obj, enc))
+    problem.write_text(build_problem(
+        obj, task.initial, task.target, enc, goal, hands_away=True,
+        refused=frozenset({("L1", "L2", "xy-axes", "decrease")}),
+        ungraspable=frozenset({("L3", "turn", frozenset({1}))})))
+    result = get_planner("artiplan").plan(domain.read_text(), problem.read_text(),
+                                          time_limit=120)
+    assert result.plan is not None, result.message
+    plan_file = tmp_path / "plan.txt"
+    plan_file.write_text(format_plan(result.plan))
+    verdict = validate_with_val(domain, problem, plan_file)
+    assert verdict.verdict == "valid", verdict.reason
+
+
+@pytest.mark.parametrize("fraction, freed", [(0.6, False), (1.01, True)])
+def test_val_and_ours_free_an_ungraspable_link_only_after_clear_far_deg(
+        fraction: float, freed: bool, tmp_path: Path) -> None:
+    """L3 could not be grasped to turn it (its grasps met L1): a turn of L2 short of
+    CLEAR_FAR_DEG leaves it blocked, one past it frees it; stock VAL and our validator
+    agree on where the plan fails."""
+    from artiplan.encoding import EncodingOptions, domain_pddl, make_goal
+    from artiplan.encoding.domain import CLEAR_FAR_DEG
+    from artiplan.encoding.suite import make_task
+    from artiplan.execution.problem import build_problem
+    from artiplan.model import ArticulatedObject
+    from artiplan.pddl import load_task
+    from artiplan.semantics import validate
+    from artiplan.semantics.plan_io import parse_plan
+
+    obj = ArticulatedObject(4)
+    task = make_task(4, 1, seed=7)
+    enc = EncodingOptions("ng", reach_time=1.0, refusals=True)
+    goal = make_goal(obj, task.target, "window", 1, planes=enc.planes, tolerance=1.5)
+    domain, problem, plan_file = tmp_path / "d.pddl", tmp_path / "p.pddl", tmp_path / "plan"
+    domain.write_text(domain_pddl(obj, enc))
+    problem.write_text(build_problem(obj, task.initial, task.target, enc, goal,
+                                     hands_away=True,
+                                     ungraspable=frozenset({("L3", "turn", frozenset({1}))})))
+    length = fraction * CLEAR_FAR_DEG / enc.speed_i  # [s]
+    text = (f"1.01: (start-increase L1 L2 z-axis)\n"
+            f"{1.01 + length:.6f}: (stop-increase L1 L2 z-axis)\n"
+            f"{2.02 + length:.6f}: (start-increase L2 L3 xy-axes)\n")
+    plan_file.write_text(text)
+    val = validate_with_val(domain, problem, plan_file)
+    ours = validate(load_task(domain, problem), parse_plan(text))
+    assert val.verdict == "invalid"  # neither plan reaches the goal
+    assert ("unsatisfied precondition" in val.reason) != freed, val.reason
+    assert (ours.kind == "precondition") != freed, ours.summary()

@@ -126,11 +126,13 @@ def test_refusals_are_dropped_when_their_pair_moves_and_free_up_to_a_budget() ->
     r.refuse(rot("L2", "L3", "z-axis", 1), in_time=True)
     r.refuse(rot("L3", "L4", "xy-axes", -1), in_time=True)
     assert r.free and describe(sorted(r.refused)[0]) == "(start-increase L2 L3 z-axis)"
-    r.turned(rot("L3", "L4", "z-axis", 1), obj)  # L4 moved: only L3-L4's refusal goes
+    r.turned(rot("L2", "L3", "z-axis", 1), obj, 9.9)  # short of CLEAR_DEG: nothing moved
+    assert len(r.refused) == 2
+    r.turned(rot("L3", "L4", "z-axis", 1), obj, 10.0)  # L4 moved: only L3-L4's refusal goes
     assert r.refused == {("L2", "L3", "z-axis", "increase")}
     r.refuse(rot("L1", "L2", "z-axis", 1), in_time=True)
     assert r.free  # after part of the plan moved: still planning, not a re-plan
-    r.turned(rot("L1", "L2", "xy-axes", 1), obj)  # L2 moved: every pair tip-ward of it too
+    r.turned(rot("L1", "L2", "xy-axes", 1), obj, 12.0)  # L2 moved: every pair tip-ward of it too
     assert not r.refused
     r.relaxed = True  # a plan that ignored the refusals, refused again from here
     r.refuse(rot("L2", "L3", "z-axis", 1), in_time=True)
@@ -168,7 +170,7 @@ def test_arms_caught_go_home_and_their_refusals_are_tried_again() -> None:
     assert ("L1", "L2", "z-axis", "decrease") in r.refused
     r.refuse(rot("L1", "L2", 1), in_time=True, arms_caught=True)
     assert not r.stuck  # no way home from here: not tried again before something turned
-    r.turned(rot("L2", "L3", 1), ArticulatedObject(4))
+    r.turned(rot("L2", "L3", 1), ArticulatedObject(4), 10.0)
     r.refuse(rot("L1", "L2", 1), in_time=True, arms_caught=True)
     assert r.stuck
     r.escapes = MAX_ESCAPES
@@ -282,8 +284,8 @@ def _plan(obj: ArticulatedObject, task: Any, enc: EncodingOptions,
 
 def test_an_ungraspable_link_is_grasped_only_after_a_turn_that_moves_it() -> None:
     """L3 could not be turned (its grasps met the scene): the plan first turns L2 by
-    CLEAR_DEG or more (which moves L3), and only then grasps L3 to turn it."""
-    from artiplan.encoding.domain import CLEAR_DEG
+    CLEAR_FAR_DEG or more (which moves L3), and only then grasps L3 to turn it."""
+    from artiplan.encoding.domain import CLEAR_FAR_DEG
 
     obj = ArticulatedObject(4)
     task = make_task(4, 1, seed=7)
@@ -296,7 +298,7 @@ def test_an_ungraspable_link_is_grasped_only_after_a_turn_that_moves_it() -> Non
     starts = [(t, s) for t, s in before if s.startswith("(start-")]
     assert starts and all(" L1 L2 " in s for _, s in starts)  # only L2 turns (it moves L3)
     stop = next(t for t, s in before if s.startswith("(stop-"))
-    assert (stop - starts[0][0]) * enc.speed_i >= CLEAR_DEG - 1e-6
+    assert (stop - starts[0][0]) * enc.speed_i >= CLEAR_FAR_DEG - 1e-6
 
 
 def test_a_tiny_turn_does_not_unlock_a_refusal(tmp_path: Any) -> None:
@@ -343,9 +345,11 @@ def test_refusals_forget_an_ungraspable_link_once_a_turn_separates_it() -> None:
     r = Refusals()
     r.refuse(rot("L2", "L3"), in_time=True, blocked=(("L3", "turn", frozenset({5})),))
     assert r.ungraspable == {("L3", "turn", frozenset({5}))}
-    r.turned(rot("L1", "L2"), obj)  # moves L3 and L5 together: still blocked
+    r.turned(rot("L1", "L2"), obj, 40.0)  # moves L3 and L5 together: still blocked
     assert r.ungraspable
-    r.turned(rot("L4", "L5"), obj)  # L5 turns away from L3
+    r.turned(rot("L4", "L5"), obj, 20.0)  # L5 turns away from L3, not yet far enough
+    assert r.ungraspable
+    r.turned(rot("L4", "L5"), obj, 25.0)  # CLEAR_FAR_DEG: the fold may have opened
     assert not r.ungraspable
 
 

@@ -54,6 +54,13 @@ REARM_360 = 270.0
 #: counting, plans unlocked refusals with 1 ms turns (up to 47 in one 6-link run) that moved
 #: nothing, and the robot refused the same grasps again.
 CLEAR_DEG = 10.0
+#: The same for a link no hand could grasp (``blocked-hold``/``blocked-turn``, cleared by
+#: ``turned-far``) [deg]. Such a link's grasps met a neighbour folded against it; measured on
+#: 4-link pushed tasks (sessions 23-24): folds of 123-175 deg, where a turn of 10 deg freed
+#: none of the grasps and the plans spent up to 39 refusals on them. A turn of 25 deg for every
+#: refusal opened one such fold (task 13) but cost a task whose refusals were arm motions not
+#: found (42 refusals): so only the grasps wait for the larger turn.
+CLEAR_FAR_DEG = 25.0
 
 
 def domain_name(options: EncodingOptions) -> str:
@@ -97,7 +104,7 @@ def _header(options: EncodingOptions) -> str:
                        "(unlocked ?l - link)",
                        "(blocked-hold ?l - link)", "(blocked-turn ?l - link)",
                        "(clears ?l1 - link ?l2 - link)", "(cleared ?l - link)",
-                       "(turned-enough)"]
+                       "(turned-enough)", "(turned-far)"]
     if options.counts_turn:
         functions.append("(turned)")
     if options.carry == "projected":
@@ -147,15 +154,16 @@ def _robot(options: EncodingOptions, sign: str) -> str:
         # of that link or of one base-ward of it has stopped (a turn further out does not
         # move the pair). A link no hand could grasp (in a role) waits until it has moved
         # relative to what its grasps met: a turn of a link between them ((clears ?l2 ?l),
-        # from the problem). Either only after a turn of CLEAR_DEG or more.
+        # from the problem). The first after a turn of CLEAR_DEG or more, the second after
+        # one of CLEAR_FAR_DEG.
         ready += (f"\n      (or (unlocked ?l2) (not (refused-{sign} ?l1 ?l2 ?p)))"
                   "\n      (or (cleared ?l1) (not (blocked-hold ?l1)))"
                   "\n      (or (cleared ?l2) (not (blocked-turn ?l2)))")
-        held_start += "\n      (not (turned-enough))"
+        held_start += "\n      (not (turned-enough))\n      (not (turned-far))"
         reach += ("\n      (when (turned-enough) (unlocked ?l2))\n      (forall (?l - link)"
                   "\n        (when (and (turned-enough) (affects ?l2 ?l)) (unlocked ?l)))"
                   "\n      (forall (?l - link)"
-                  "\n        (when (and (turned-enough) (clears ?l2 ?l)) (cleared ?l)))")
+                  "\n        (when (and (turned-far) (clears ?l2 ?l)) (cleared ?l)))")
     if options.torque_fall:
         # The factors are the percept's geometry: links the robot tilts (a turn on the gravity
         # plane) fall at the paper's uniform speed from then on (their new torques are not
@@ -401,6 +409,15 @@ _TURNED = f"""
       (not (turned-enough))
       (>= (turned) {fmt_number(CLEAR_DEG)}))
     :effect (and (turned-enough)))
+
+  ;; A turn has gone far enough to unlock a link no hand could grasp (CLEAR_FAR_DEG).
+  (:event turned-far
+    :parameters ()
+    :precondition (and
+      (in-use)
+      (not (turned-far))
+      (>= (turned) {fmt_number(CLEAR_FAR_DEG)}))
+    :effect (and (turned-far)))
 """
 
 def _observe(options: EncodingOptions) -> str:

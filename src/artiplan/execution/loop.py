@@ -22,7 +22,6 @@ from typing import TYPE_CHECKING, Any
 
 from artiplan.backends import get_planner
 from artiplan.encoding import domain_pddl, make_goal
-from artiplan.encoding.domain import CLEAR_DEG
 from artiplan.execution.aim import Aim
 from artiplan.execution.config import Intervention, LoopConfig
 from artiplan.execution.dispatch import (
@@ -208,8 +207,8 @@ class ClosedLoop(Planning):
 
     def _turn_close(self) -> None:
         """The turn in progress (if any) ends now: the refusals it unlocks are unlocked when
-        its command went CLEAR_DEG or more (to where the arms stopped it short, if they did),
-        as the plans' ``turned-enough`` rule has it."""
+        its command went far enough (to where the arms stopped it short, if they did), as
+        the plans' ``turned-enough`` and ``turned-far`` rules have it."""
         if self._turn is None:
             return
         step, t0, speed = self._turn
@@ -218,8 +217,7 @@ class ClosedLoop(Planning):
         stops = getattr(self.world, "turn_ends", None)
         if stops is not None:
             end = min(end, float(stops))
-        if speed * (end - t0) >= CLEAR_DEG - _EPS:
-            self.refusals.turned(step, self.obj)
+        self.refusals.turned(step, self.obj, speed * (end - t0))
 
     def _diverged(self, message: str) -> None:
         """The simulation diverged: the run fails, with what was last perceived before (the

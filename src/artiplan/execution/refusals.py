@@ -21,17 +21,21 @@ final leg). Then no start that grasps it so is planned before it has moved relat
 its grasps met (:func:`artiplan.encoding.problem.turns_between`), which saves one refusal per
 rotation that grasps it (measured: 13 refusals of L3 in one 6-link run, its grasps meeting
 L5 or L6 folded back beside it). Refusals are unlocked only by a turn of at least
-:data:`artiplan.encoding.domain.CLEAR_DEG`, in the plans as in the loop's own record.
+:data:`artiplan.encoding.domain.CLEAR_DEG` (a link no hand could grasp: of
+:data:`artiplan.encoding.domain.CLEAR_FAR_DEG`), in the plans as in the loop's own record.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
 
+from artiplan.encoding.domain import CLEAR_DEG, CLEAR_FAR_DEG
 from artiplan.encoding.problem import Ungraspable, turns_between
 from artiplan.execution.dispatch import Rotate
 from artiplan.model import ArticulatedObject
 
+#: Slack [deg] on the turn that unlocks refusals (a turn commanded to exactly CLEAR_DEG).
+_EPS = 1e-6
 #: A refused rotation: (hold link, rotated link, plane, ``increase`` or ``decrease``).
 Refusal = tuple[str, str, str, str]
 #: At most this many plans a run whose rotation the world refused are planned again without
@@ -127,15 +131,19 @@ class Refusals:
             self.refused = self.refused - self.caught
             self.caught = frozenset()
 
-    def turned(self, step: Rotate, obj: ArticulatedObject) -> None:
-        """``step`` turned its link by CLEAR_DEG or more: the pairs from its rotated link on
-        have moved, and the links it separated from what their grasps met."""
+    def turned(self, step: Rotate, obj: ArticulatedObject, deg: float) -> None:
+        """``step`` turned its link by ``deg`` [deg]: from CLEAR_DEG on, the pairs from its
+        rotated link on have moved; from CLEAR_FAR_DEG on, also the links it separated from
+        what their grasps met (as the plans' ``turned-enough`` and ``turned-far`` have it)."""
+        if deg < CLEAR_DEG - _EPS:
+            return
         j = obj.index(step.turn)
         self.homeless = False
         self.refused = frozenset(r for r in self.refused if obj.index(r[1]) < j)
         self.caught = self.caught & self.refused
-        self.ungraspable = frozenset(u for u in self.ungraspable
-                                     if j not in turns_between(obj.index(u[0]), u[2]))
+        if deg >= CLEAR_FAR_DEG - _EPS:
+            self.ungraspable = frozenset(u for u in self.ungraspable
+                                         if j not in turns_between(obj.index(u[0]), u[2]))
 
 
 def refusal(step: Rotate) -> Refusal:
