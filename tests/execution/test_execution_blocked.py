@@ -516,3 +516,43 @@ def test_a_turn_its_link_does_not_follow_is_refused_without_spending_a_replan() 
 def test_stall_deg_must_be_positive() -> None:
     with pytest.raises(ValueError, match="stall_deg"):
         LoopConfig(stall_deg=0.0)
+
+
+def test_refusals_are_tried_again_once_the_percepts_show_the_chain_moved_away() -> None:
+    """Task 20 with the push (session 25): L2's own turn was refused (its grasps met the
+    fixture), and L3 (met L2, folded back on it) could not be grasped; in the dead-end waits
+    L2 fell 30 deg with L3 folded on it. L2's turn may be tried again and L3 still not; a
+    new refusal measures from then."""
+    from artiplan.execution.dispatch import Rotate
+    from artiplan.execution.refusals import MOVED_DEG, Refusals
+    from artiplan.model import Configuration
+    from artiplan.semantics import TimedAction
+
+    def rot(hold: str, turn: str) -> Rotate:
+        return Rotate(TimedAction(1.0, "start-increase", (hold, turn, "z-axis")), hold, turn,
+                      "z-axis", 1, 5.0)
+
+    obj = ArticulatedObject(4)
+    l2 = ("L2", "turn", frozenset({1}))
+    l3 = ("L3", "turn", frozenset({2}))
+    l3_held = ("L3", "hold", frozenset({1, 2}))  # met L2 and the fixture
+    pair = ("L1", "L2", "z-axis", "increase")
+    r = Refusals()
+    r.refuse(rot("L2", "L3"), in_time=True, blocked=(l3,))
+    r.refuse(rot("L3", "L4"), in_time=True, blocked=(l3_held,))
+    r.refuse(rot("L1", "L2"), in_time=True, blocked=(l2,))
+    then = Configuration((45.0, 270.0, 90.0, 20.0), (43.0, 164.0, 26.0, 70.0))
+    assert r.settled(then, obj) == ([], []) and r.ungraspable == {l2, l3, l3_held}
+    a_little = Configuration((45.0, 270.0, 90.0, 20.0),
+                             (43.0, 164.0 - 0.9 * MOVED_DEG, 26.0 + 0.9 * MOVED_DEG, 70.0))
+    assert r.settled(a_little, obj) == ([], [])
+    fell = Configuration((45.0, 270.0, 90.0, 20.0), (43.0, 134.0, 56.0, 70.0))
+    pairs, links = r.settled(fell, obj)
+    # L3 is still folded on L2, but it has moved away from the fixture
+    assert set(links) == {l2, l3_held} and r.ungraspable == {l3}
+    assert set(pairs) == {pair, ("L2", "L3", "z-axis", "increase")}  # L2 and L3 moved
+    assert r.refused == {("L3", "L4", "z-axis", "increase")}  # L4 has not
+    assert set(r.seen) == {l3, ("L3", "L4", "z-axis", "increase")}
+    r.refuse(rot("L1", "L2"), in_time=True, blocked=(l2,))  # refused again: measured from now
+    assert r.settled(fell, obj) == ([], []) and r.ungraspable == {l2, l3}
+    assert pair in r.refused

@@ -17,7 +17,7 @@ from artiplan.execution.config import Intervention, LoopConfig
 from artiplan.execution.dispatch import Rotate
 from artiplan.execution.predict import Prediction
 from artiplan.execution.problem import build_problem, canonical
-from artiplan.execution.refusals import WAIT_S, Refusal, Refusals, describe
+from artiplan.execution.refusals import MOVED_DEG, WAIT_S, Refusal, Refusals, describe
 from artiplan.execution.runlog import RunLog, conf_dict
 from artiplan.model import ArticulatedObject, Configuration
 from artiplan.semantics import Plan
@@ -111,6 +111,10 @@ class Planning:
     def _plan(self, reason: str, counted: bool = True) -> Prediction | None:
         """Perceive, build the problem, plan; log it (a re-plan when ``counted``, else a plan
         again after a refusal or a carried link's error). None when no plan was found."""
+        if (self.refusals.stuck or self.refusals.waiting) and self.log.samples:
+            # the links refused now are measured from before the arms or the chain move
+            last = self.log.samples[-1]["perceived"]
+            self._settle(Configuration(tuple(last["theta"]), tuple(last["gamma"])))
         if self.refusals.stuck:
             self._escape()
         elif self.refusals.waiting:
@@ -158,6 +162,17 @@ class Planning:
                  for iv in self.pending), key=lambda i: i.time)
         return Prediction(self.obj, result.trajectory, t0, start)
 
+    def _settle(self, conf: Configuration) -> None:
+        """Forget the refusals the chain has since moved away from (:meth:`Refusals.settled`),
+        saying so."""
+        pairs, links = self.refusals.settled(conf, self.obj)
+        for r in pairs:
+            self.progress(f"{describe(r)} may be tried again: {r[1]} has turned "
+                          f"{MOVED_DEG:g} deg or more since it was refused")
+        for u in links:
+            self.progress(f"{u[0]} may be grasped to {u[1]} it again: it has turned "
+                          f"{MOVED_DEG:g} deg or more against what its grasps met")
+
     def _escape(self) -> None:
         """The arms found no way to the grasps from where they are (caught in the chain, say):
         both go home first by planned motions, and the rotations refused for that may be
@@ -200,6 +215,7 @@ class Planning:
         (measured: a 6-link run spent its whole re-plan budget in 0.1 s of simulated time
         on 6 such refusals of the same two rotations)."""
         r = self.refusals
+        self._settle(start)
         every = (r.refused, r.ungraspable)
         certain: Avoid = (r.refused - r.caught, r.ungraspable)
         none: Avoid = (frozenset(), frozenset())

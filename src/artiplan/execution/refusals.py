@@ -20,19 +20,22 @@ its role (every grasp of both hands meets another link or the scene at the grasp
 final leg). Then no start that grasps it so is planned before it has moved relative to what
 its grasps met (:func:`artiplan.encoding.problem.turns_between`), which saves one refusal per
 rotation that grasps it (measured: 13 refusals of L3 in one 6-link run, its grasps meeting
-L5 or L6 folded back beside it). Refusals are unlocked only by a turn of at least
+L5 or L6 folded back beside it). Refusals are unlocked by a turn of at least
 :data:`artiplan.encoding.domain.CLEAR_DEG` (a link no hand could grasp: of
-:data:`artiplan.encoding.domain.CLEAR_FAR_DEG`), in the plans as in the loop's own record.
+:data:`artiplan.encoding.domain.CLEAR_FAR_DEG`), in the plans as in the loop's own record,
+or, between plans, once the percepts show the chain has moved :data:`MOVED_DEG` away from
+where it was refused, whatever moved it (:meth:`Refusals.settled`).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 
 from artiplan.encoding.domain import CLEAR_DEG, CLEAR_FAR_DEG
 from artiplan.encoding.problem import Ungraspable, turns_between
 from artiplan.execution.dispatch import Rotate
-from artiplan.model import ArticulatedObject
+from artiplan.model import ArticulatedObject, Configuration
+from artiplan.model.kinematics import relative_turn
 
 #: Slack [deg] on the turn that unlocks refusals (a turn commanded to exactly CLEAR_DEG).
 _EPS = 1e-6
@@ -54,6 +57,14 @@ MAX_ESCAPES = 3
 MAX_WAITS = 3
 #: Simulated time [s] the hands let go in a dead end (see :data:`MAX_WAITS`).
 WAIT_S = 5.0
+#: A refused rotation is tried again once the percepts show its rotated link turned this far
+#: [deg] in the world, and a link no hand could grasp once it turned this far against some
+#: link its grasps met, whatever turned them (gravity while the hands were open, a push):
+#: the plans' own unlock counts only the robot's turns, and a refusal of a link's own turn
+#: waits for that very turn. Measured on 4-link pushed task 20 (session 25): L2's turn,
+#: refused, waited while L2 fell 49 deg in 45 s of dead-end waits, and the plans kept trying
+#: the one other link, L3 (folded on L2), refused every 5 s.
+MOVED_DEG = 10.0
 
 
 @dataclass
@@ -78,6 +89,8 @@ class Refusals:
         waiting: The last refusal was a dead end: the hands should let go for a while
             before planning again (:data:`MAX_WAITS`).
         waits: Times the hands let go so far.
+        seen: The configuration each of ``refused`` and ``ungraspable`` was first perceived
+            in after its refusal (:meth:`settled`).
         max_free: Plans made again for free at most (``LoopConfig.free_refusals``).
     """
 
@@ -93,6 +106,7 @@ class Refusals:
     waiting: bool = False
     waits: int = 0
     max_free: int = MAX_FREE
+    seen: dict[Refusal | Ungraspable, Configuration] = field(default_factory=dict)
 
     def refuse(self, step: Rotate, in_time: bool, arms_caught: bool = False,
                blocked: tuple[Ungraspable, ...] = ()) -> None:
@@ -107,6 +121,9 @@ class Refusals:
                  and refusal(step) in self.refused)
         self.refused = self.refused | {refusal(step)}
         self.ungraspable = self.ungraspable | set(blocked)
+        self.seen.pop(refusal(step), None)  # measured again from the state refused now
+        for u in blocked:
+            self.seen.pop(u, None)
         # Refused again from the state it was refused in (the plan ignored the refusals): the
         # grasp choice is deterministic, so only a motion not found (randomised) may go next
         # time (measured: 20 identical grasp refusals in a row at 4.8-5.1 s of one run),
@@ -144,6 +161,32 @@ class Refusals:
         if deg >= CLEAR_FAR_DEG - _EPS:
             self.ungraspable = frozenset(u for u in self.ungraspable
                                          if j not in turns_between(obj.index(u[0]), u[2]))
+
+    def settled(self, conf: Configuration,
+                obj: ArticulatedObject) -> tuple[list[Refusal], list[Ungraspable]]:
+        """Forget what the percepts show has moved :data:`MOVED_DEG` or more since the first
+        configuration perceived after its refusal (``conf`` is that one for those refused
+        since the last call): a refused rotation whose rotated link has turned in the world,
+        a link no hand could grasp that has turned against some link its grasps met (as a
+        turn between them unlocks it in the plans, :func:`turns_between`).
+        Returns those forgotten."""
+        pairs = []
+        for r in sorted(self.refused):
+            then = self.seen.setdefault(r, conf)
+            if relative_turn(then, conf, obj.index(r[1]), 1) >= MOVED_DEG:
+                pairs.append(r)
+        links = []
+        for u in sorted(self.ungraspable, key=lambda u: (u[0], u[1], sorted(u[2]))):
+            then = self.seen.setdefault(u, conf)
+            x = obj.index(u[0])
+            if max(relative_turn(then, conf, x, m) for m in u[2]) >= MOVED_DEG:
+                links.append(u)
+        self.refused = self.refused - set(pairs)
+        self.caught = self.caught & self.refused
+        self.ungraspable = self.ungraspable - set(links)
+        self.seen = {k: c for k, c in self.seen.items()
+                     if k in self.refused or k in self.ungraspable}
+        return pairs, links
 
 
 def refusal(step: Rotate) -> Refusal:

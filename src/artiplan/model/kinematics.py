@@ -46,3 +46,22 @@ def direction_error(a: Configuration, b: Configuration) -> NDArray[np.float64]:
         raise ValueError(f"configurations differ in size: {a.n_links} vs {b.n_links}")
     dots = np.clip(np.sum(directions(a) * directions(b), axis=1), -1.0, 1.0)
     return np.degrees(np.arccos(dots))
+
+
+def relative_turn(then: Configuration, now: Configuration, link: int, other: int) -> float:
+    """How far [deg] link ``link`` turned against link ``other`` (1-based indices) from
+    ``then`` to ``now``: the change of the angle between their directions, or, against the
+    clamped base L1 (``other`` 1, which stands for the fixed scene too), the angle between
+    ``link``'s own directions then and now. Links carried together by one turn have not
+    turned against each other; a turn of ``link`` about ``other``'s axis is not seen (the
+    links' directions fix no frame about them)."""
+    u_then, u_now = directions(then), directions(now)
+    if other == 1:
+        return _angle(u_then[link - 1], u_now[link - 1])
+    return abs(_angle(u_now[link - 1], u_now[other - 1])
+               - _angle(u_then[link - 1], u_then[other - 1]))
+
+
+def _angle(a: NDArray[np.float64], b: NDArray[np.float64]) -> float:
+    """Angle [deg] between unit vectors ``a`` and ``b``."""
+    return math.degrees(math.acos(max(-1.0, min(1.0, float(np.dot(a, b))))))
