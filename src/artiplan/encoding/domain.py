@@ -400,25 +400,25 @@ def _reach() -> str:
 """
 
 
-_TURNED = f"""
-  ;; A turn has gone far enough to unlock what the robot refused (CLEAR_DEG).
-  (:event turned-enough
+def _turned_event(name: str, degrees: float, what: str) -> str:
+    """The event ``name``: a turn in progress has gone ``degrees`` [deg], far enough to
+    unlock ``what``."""
+    return f"""
+  ;; A turn has gone far enough to unlock {what}.
+  (:event {name}
     :parameters ()
     :precondition (and
       (in-use)
-      (not (turned-enough))
-      (>= (turned) {fmt_number(CLEAR_DEG)}))
-    :effect (and (turned-enough)))
-
-  ;; A turn has gone far enough to unlock a link no hand could grasp (CLEAR_FAR_DEG).
-  (:event turned-far
-    :parameters ()
-    :precondition (and
-      (in-use)
-      (not (turned-far))
-      (>= (turned) {fmt_number(CLEAR_FAR_DEG)}))
-    :effect (and (turned-far)))
+      (not ({name}))
+      (>= (turned) {fmt_number(degrees)}))
+    :effect (and ({name})))
 """
+
+
+_TURNED = (_turned_event("turned-enough", CLEAR_DEG, "what the robot refused (CLEAR_DEG)")
+           + _turned_event("turned-far", CLEAR_FAR_DEG,
+                           "a link no hand could grasp (CLEAR_FAR_DEG)"))
+
 
 def _observe(options: EncodingOptions) -> str:
     within = ("" if options.max_turn_deg is None

@@ -55,9 +55,9 @@ def relative_turn(then: Configuration, now: Configuration, link: int, other: int
     ``link``'s own directions then and now. Links carried together by one turn have not
     turned against each other; a turn of ``link`` about ``other``'s axis is not seen (the
     links' directions fix no frame about them)."""
-    u_then, u_now = directions(then), directions(now)
     if other == 1:
-        return _angle(u_then[link - 1], u_now[link - 1])
+        return float(direction_error(then, now)[link - 1])
+    u_then, u_now = directions(then), directions(now)
     return abs(_angle(u_now[link - 1], u_now[other - 1])
                - _angle(u_then[link - 1], u_then[other - 1]))
 
