@@ -289,3 +289,24 @@ def test_baxter_refuses_a_grasp_whose_last_jump_would_go_into_the_other_arm(monk
     with pytest.raises(NotExecutableError, match="right hand's grasp of L3 would put it"):
         hands.grasp("right", "L3")
     assert np.array_equal(world.data.qpos, before) and hands.held("right") is None
+
+
+@pytest.mark.slow
+@pytest.mark.ci  # ~3 s
+def test_baxter_a_joint_between_two_grasped_links_stays_calm() -> None:
+    """The object's joints chattered between two welded grippers (armature 1e-4: peak 1083
+    rad/s^2 here; MuJoCo diverged in 6-link task 11 when the grippers then touched); the
+    stiff preset's armature keeps them calm (58 rad/s^2 measured)."""
+    from artiplan.encoding.suite import make_task
+
+    obj = ArticulatedObject(6)
+    world = make_world(obj, make_task(6, 11, seed=7).initial, hands="baxter", preset="stiff")
+    m = world.model
+    dofs = [i for i in range(m.nv) if m.joint(int(m.dof_jntid[i])).name.startswith("J")]
+    assert len(dofs) == 3 * (obj.n_links - 1)
+    world.hold_and_rotate("L2", "L3", "xy-axes", 1, extent_deg=20.0)
+    peak = 0.0
+    for _ in range(250):  # 0.5 s
+        world.step()
+        peak = max(peak, float(np.abs(world.data.qacc[dofs]).max()))
+    assert peak < 300.0

@@ -43,9 +43,15 @@ class JointPhysics:
 
 
 #: A 0.05 kg, 0.15 m link held horizontal feels 0.037 N m; 3.0 N m s/rad -> ~0.7 deg/s.
+#: ``stiff`` armature: 3e-3 kg m^2 (8x a link's own 3.75e-4 about its joint). With 1e-4 a
+#: joint between two links held by Baxter's grippers chattered at up to 6500 rad/s^2, and in
+#: 6-link task 11 (every run of sessions 20-25) MuJoCo diverged within 12 ms of the two
+#: grippers touching (4 mm); from the same state with 3e-3: 330 rad/s^2 and no divergence.
+#: The overdamped fall is unchanged (time constant 1 ms; calibrated speed-g 0.9476 against
+#: 0.9478 on 4 links). ``loose`` keeps 1e-4: its swing depends on the link's inertia.
 PRESETS = MappingProxyType(
     {
-        "stiff": JointPhysics(damping=3.0, frictionloss=0.0, armature=1e-4),
+        "stiff": JointPhysics(damping=3.0, frictionloss=0.0, armature=3e-3),
         "loose": JointPhysics(damping=0.002, frictionloss=0.0, armature=1e-4),
     }
 )
