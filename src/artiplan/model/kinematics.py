@@ -44,8 +44,7 @@ def direction_error(a: Configuration, b: Configuration) -> NDArray[np.float64]:
     """
     if a.n_links != b.n_links:
         raise ValueError(f"configurations differ in size: {a.n_links} vs {b.n_links}")
-    dots = np.clip(np.sum(directions(a) * directions(b), axis=1), -1.0, 1.0)
-    return np.degrees(np.arccos(dots))
+    return _angles(directions(a), directions(b))
 
 
 def relative_turn(then: Configuration, now: Configuration, link: int, other: int) -> float:
@@ -58,10 +57,10 @@ def relative_turn(then: Configuration, now: Configuration, link: int, other: int
     if other == 1:
         return float(direction_error(then, now)[link - 1])
     u_then, u_now = directions(then), directions(now)
-    return abs(_angle(u_now[link - 1], u_now[other - 1])
-               - _angle(u_then[link - 1], u_then[other - 1]))
+    return abs(float(_angles(u_now[link - 1], u_now[other - 1]))
+               - float(_angles(u_then[link - 1], u_then[other - 1])))
 
 
-def _angle(a: NDArray[np.float64], b: NDArray[np.float64]) -> float:
-    """Angle [deg] between unit vectors ``a`` and ``b``."""
-    return math.degrees(math.acos(max(-1.0, min(1.0, float(np.dot(a, b))))))
+def _angles(u: NDArray[np.float64], v: NDArray[np.float64]) -> NDArray[np.float64]:
+    """Angle [deg] between unit vectors ``u`` and ``v`` (along the last axis: row by row)."""
+    return np.degrees(np.arccos(np.clip(np.sum(u * v, axis=-1), -1.0, 1.0)))
