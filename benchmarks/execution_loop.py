@@ -40,6 +40,9 @@ def main() -> None:
                     help="the model the loop falls back to (default: LoopConfig's; none: keep)")
     ap.add_argument("--fallback-after", type=int, default=None,
                     help="switch to NG from this many re-plans on (default: LoopConfig's)")
+    ap.add_argument("--fallback-scope", choices=("run", "plan"), default=None,
+                    help="the fallback model stays for the run, or makes only the plans the "
+                         "model in use finds none for (default: LoopConfig's)")
     ap.add_argument("--carry", choices=("rigid", "projected"), default="rigid",
                     help="the encodings' carry rule (EncodingOptions.carry)")
     ap.add_argument("--fall", choices=("uniform", "torque"), default="uniform",
@@ -106,6 +109,8 @@ def main() -> None:
         config = replace(config, fallback_model=None if args.fallback == "none" else args.fallback)
     if args.fallback_after is not None:
         config = replace(config, fallback_after=args.fallback_after)
+    if args.fallback_scope is not None:
+        config = replace(config, fallback_scope=args.fallback_scope)
     if args.no_monitor_ahead:
         config = replace(config, monitor_ahead=False)
     if args.no_aim:
@@ -158,7 +163,9 @@ def main() -> None:
                    "approach_s": args.approach, "reach_time": reach,
                    "compensate": not args.no_compensate, "carry": args.carry, "fall": args.fall,
                    "max_replans": config.budget(args.links), "monitor_ahead": config.monitor_ahead,
-                   "fallback": config.fallback_model, "max_turn_deg": config.max_turn_deg,
+                   "fallback": config.fallback_model,
+                   "fallback_scope": config.fallback_scope, "fallback_after": config.fallback_after,
+                   "max_turn_deg": config.max_turn_deg,
                    "aim": config.aim, "free_carry_replans": config.free_carry_replans,
                    "free_refusals": config.free_refusals, "threshold": config.threshold_deg,
                    "impact_stop_mm": None if world.config.impact_stop_m is None

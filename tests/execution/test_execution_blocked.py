@@ -260,6 +260,43 @@ def test_no_plan_with_the_gravity_model_tries_the_fallback_model_before_giving_u
     assert not log.replans and not log.refusals and log.success
 
 
+@pytest.mark.parametrize("scope", ["run", "plan"])
+def test_the_fallback_model_stays_for_the_run_or_makes_only_the_plan_it_was_needed_for(
+        scope: str) -> None:
+    """UCM finds no plan once: NG makes that plan; the next plan is NG's again with the scope
+    ``run`` and UCM's own with ``plan``."""
+    from artiplan.semantics.results import PlanResult, PlanStatus
+    from artiplan.world import make_world
+
+    obj = ArticulatedObject(3)
+    init, target = random_pair(3, random.Random(6))
+    world = make_world(obj, init, hands="virtual", seed=6)
+    from artiplan.execution.loop import ClosedLoop
+
+    cfg = LoopConfig(EncodingOptions("ucm", speed_g=0.5), max_turn_deg=None,
+                     fallback_scope=scope)
+    loop = ClosedLoop(world, target, cfg, None, 6, None)
+    real = loop.planner.plan
+    models: list[str] = []
+
+    def ucm_times_out_once(domain: str, problem: str, **kw: Any) -> Any:
+        models.append("ucm" if "artiplan-ucm" in domain else "ng")
+        if models == ["ucm"]:
+            return PlanResult(PlanStatus.TIMEOUT, message="time limit (injected)")
+        return real(domain, problem, **kw)
+
+    loop.planner.plan = ucm_times_out_once  # type: ignore[method-assign]
+    assert loop._plan("initial", counted=False) is not None
+    assert loop._plan("again", counted=False) is not None
+    assert [p["model"] for p in loop.log.plans] == ["ng", "ng" if scope == "run" else "ucm"]
+    assert models == ["ucm", "ng", "ng" if scope == "run" else "ucm"]
+
+
+def test_an_unknown_fallback_scope_is_refused() -> None:
+    with pytest.raises(ValueError, match="fallback_scope"):
+        LoopConfig(fallback_scope="task")
+
+
 def test_turns_between_separate_a_link_from_what_its_grasps_met() -> None:
     from artiplan.encoding.problem import turns_between
 

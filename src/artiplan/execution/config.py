@@ -64,6 +64,10 @@ class LoopConfig:
             a link into its window are the brittle ones).
         fallback_after: Also switch to the fallback model from this many re-plans on, whatever
             their reasons (a model the physics keeps contradicting is not worth re-using).
+        fallback_scope: ``run``: the switches above last for the rest of the run. ``plan``:
+            the fallback model makes only the plans the model in use finds none for (around
+            refusals, say); the next plan is the model's own again, and neither a missed goal
+            nor the re-plan count switches models.
         use_ontology: Go through the world's OWL knowledge base: each re-plan's percept is
             recorded in it and the initial state (and the target) read back by a query, as the
             paper's architecture does (False: straight from the percept).
@@ -136,6 +140,7 @@ class LoopConfig:
     max_time: float = 600.0
     fallback_model: str | None = "ng"
     fallback_after: int = 2
+    fallback_scope: str = "run"
     use_ontology: bool = True
     monitor_tip_links: bool = False
     compensate_approach: bool = True
@@ -155,6 +160,8 @@ class LoopConfig:
             raise ValueError("stall_deg must be positive (None: off)")
         if self.monitor_dt <= 0:
             raise ValueError("monitor_dt must be positive")
+        if self.fallback_scope not in ("run", "plan"):
+            raise ValueError(f"unknown fallback_scope {self.fallback_scope!r}; valid: run, plan")
         if (self.max_replans is not None and self.max_replans < 0) \
                 or self.free_carry_replans < 0 or self.free_refusals < 0:
             raise ValueError("max_replans, free_carry_replans and free_refusals must be >= 0")

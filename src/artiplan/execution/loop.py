@@ -169,7 +169,8 @@ class ClosedLoop(Planning):
                     reason += f"; {carried} off when the vertical turn carrying it stopped"
                 else:
                     self._learn_aim()
-                    self._fall_back()
+                    if self.config.fallback_scope == "run":
+                        self._fall_back()
             else:
                 reason = outcome
             self._turn_close()
@@ -187,7 +188,7 @@ class ClosedLoop(Planning):
                     self.refusals.count += 1
                 continue
             self.replans += 1
-            if self.replans >= self.config.fallback_after:
+            if self.replans >= self.config.fallback_after and self.config.fallback_scope == "run":
                 self._fall_back()
 
     def _missed_carried(self) -> str:

@@ -99,6 +99,15 @@ class Planning:
         self.progress(f"falling back to the {model.upper()} model for the next plans")
         return True
 
+    def _own_model(self) -> None:
+        """Back to the configured model after a plan the fallback model made
+        (``LoopConfig.fallback_scope`` ``plan``)."""
+        own = self.config.encoding.model
+        if self.encoding.model != own:
+            self.encoding = replace(self.encoding, model=own, fall=self.config.encoding.fall)
+            self.domain = domain_pddl(self.obj, self.encoding)
+            self.progress(f"back to the {own.upper()} model")
+
     def _perceive_for_planning(self) -> Configuration:
         """Perceive; through the knowledge base when configured (percept in, query out)."""
         percept = self.world.perceive()
@@ -120,6 +129,8 @@ class Planning:
         elif self.refusals.waiting:
             self._wait()
         start = canonical(self._perceive_for_planning())
+        if self.config.fallback_scope == "plan":
+            self._own_model()
         t = time.perf_counter()
         result = self._solve(start)
         latency = time.perf_counter() - t
