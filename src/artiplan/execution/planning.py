@@ -10,7 +10,7 @@ from dataclasses import replace
 from typing import TYPE_CHECKING, Any, cast
 
 from artiplan.encoding import EncodingOptions, GoalSpec, domain_pddl
-from artiplan.encoding.options import Model
+from artiplan.encoding.options import Fall, Model
 from artiplan.encoding.problem import Ungraspable
 from artiplan.execution.aim import Aim
 from artiplan.execution.config import Intervention, LoopConfig
@@ -93,20 +93,22 @@ class Planning:
         model = self.config.fallback_model
         if model is None or model == self.encoding.model:
             return False
-        fall = self.encoding.fall if model == "ucm" else "uniform"  # ucm only
-        self.encoding = replace(self.encoding, model=cast(Model, model), fall=fall)
-        self.domain = domain_pddl(self.obj, self.encoding)
+        self._use_model(cast(Model, model), self.encoding.fall if model == "ucm" else "uniform")
         self.progress(f"falling back to the {model.upper()} model for the next plans")
         return True
 
     def _own_model(self) -> None:
         """Back to the configured model after a plan the fallback model made
         (``LoopConfig.fallback_scope`` ``plan``)."""
-        own = self.config.encoding.model
-        if self.encoding.model != own:
-            self.encoding = replace(self.encoding, model=own, fall=self.config.encoding.fall)
-            self.domain = domain_pddl(self.obj, self.encoding)
-            self.progress(f"back to the {own.upper()} model")
+        own = self.config.encoding
+        if self.encoding.model != own.model:
+            self._use_model(own.model, own.fall)
+            self.progress(f"back to the {own.model.upper()} model")
+
+    def _use_model(self, model: Model, fall: Fall) -> None:
+        """Plan with ``model`` (its ``fall`` rule: only UCM's is not uniform) from now on."""
+        self.encoding = replace(self.encoding, model=model, fall=fall)
+        self.domain = domain_pddl(self.obj, self.encoding)
 
     def _perceive_for_planning(self) -> Configuration:
         """Perceive; through the knowledge base when configured (percept in, query out)."""
