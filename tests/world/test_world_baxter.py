@@ -69,7 +69,7 @@ def _fractions(world, hand: str, link: str, first: int | None = None) -> set[flo
     b = world.model.body(link).id
     base, u = world.data.xpos[b], -world.data.xmat[b].reshape(3, 3)[:, 2]
     out = set()
-    for pos, quat in hands.grasp_poses(hand, link, tiers=4)[:first]:
+    for pos, quat in hands.grasp_poses(hand, link, tiers=5)[:first]:
         mat = np.empty(9)
         mujoco.mju_quat2Mat(mat, quat)
         point = pos + hands._depth * mat.reshape(3, 3)[:, 2]  # between the finger pads
@@ -92,9 +92,39 @@ def test_baxter_grasp_candidates_include_points_away_from_the_shared_joint() -> 
     assert _fractions(world, "right", "L3", hands.tier_end("L3", 2)) == {0.5, 0.75, 0.35}
 
 
-def test_baxter_tier_three_grasps_near_the_ends_and_tier_four_shallower() -> None:
-    """Tier 3 grasps near the links' ends (both ends of the held link, the far end of the
-    rotated one); tier 4's poses are tier 1's (same points, approaches and finger ways) with
+def test_baxter_tier_three_turns_the_approaches_of_tiers_one_and_two_half_a_step() -> None:
+    """Tier 3's poses are tiers 1-2's, in order, at the same grasp points with the same tilt
+    along the link, each approach turned half a step (22.5 deg of the 8-step turn) further
+    about the link: 16 approach directions where tiers 1-2 have 8."""
+    obj = ArticulatedObject(4)
+    conf = Configuration.from_angles([180, 90, 60, 30], [90, 100, 80, 60])
+    world = make_world(obj, conf, hands="baxter")
+    hands = world.hands
+    hands.assign("L2", "L3")
+    for hand, link in (("left", "L2"), ("right", "L3")):
+        b = world.model.body(link).id
+        u = -world.data.xmat[b].reshape(3, 3)[:, 2]
+        poses = hands.grasp_poses(hand, link, tiers=3)
+        old, new = poses[: hands.tier_end(link, 2)], poses[hands.tier_end(link, 2):]
+        assert len(new) == len(old) == len(poses) // 2
+        for (p1, q1), (p2, q2) in zip(old, new, strict=True):
+            m1, m2 = np.empty(9), np.empty(9)
+            mujoco.mju_quat2Mat(m1, q1)
+            mujoco.mju_quat2Mat(m2, q2)
+            z1, z2 = m1.reshape(3, 3)[:, 2], m2.reshape(3, 3)[:, 2]
+            # The grasp point between the pads, and the tilt along the link, are kept.
+            np.testing.assert_allclose(p1 + hands._depth * z1, p2 + hands._depth * z2,
+                                       atol=1e-9)
+            assert np.dot(z1, u) == pytest.approx(np.dot(z2, u), abs=1e-9)
+            # The approach's part across the link turned 22.5 deg about it, the same way.
+            a1, a2 = z1 - np.dot(z1, u) * u, z2 - np.dot(z2, u) * u
+            turn = np.degrees(np.arctan2(np.dot(np.cross(a1, a2), u), np.dot(a1, a2)))
+            assert turn == pytest.approx(22.5, abs=1e-6)
+
+
+def test_baxter_tier_four_grasps_near_the_ends_and_tier_five_shallower() -> None:
+    """Tier 4 grasps near the links' ends (both ends of the held link, the far end of the
+    rotated one); tier 5's poses are tier 1's (same points, approaches and finger ways) with
     the link SHALLOW_M nearer the fingertips: the hand SHALLOW_M further back."""
     from artiplan.world.grasping import END_NEAR, SHALLOW_M
 
@@ -105,14 +135,14 @@ def test_baxter_tier_three_grasps_near_the_ends_and_tier_four_shallower() -> Non
     hands.assign("L2", "L3")
     ends = {"L2": {END_NEAR, 1 - END_NEAR}, "L3": {1 - END_NEAR}}
     for hand, link in (("left", "L2"), ("right", "L3")):
-        poses = hands.grasp_poses(hand, link, tiers=4)
+        poses = hands.grasp_poses(hand, link, tiers=5)
         first = hands.tier_size(link)
-        assert hands.tier_end(link, 4) == len(poses)
+        assert hands.tier_end(link, 5) == len(poses)
         assert hands.tier_end(link, 2) == len(hands.grasp_poses(hand, link, tiers=2))
-        tier3 = (hands.tier_end(link, 2), hands.tier_end(link, 3))
-        assert _fractions(world, hand, link, tier3[1]) - _fractions(
-            world, hand, link, tier3[0]) == ends[link]
-        deep, shallow = poses[:first], poses[tier3[1]:]
+        tier4 = (hands.tier_end(link, 3), hands.tier_end(link, 4))
+        assert _fractions(world, hand, link, tier4[1]) - _fractions(
+            world, hand, link, tier4[0]) == ends[link]
+        deep, shallow = poses[:first], poses[tier4[1]:]
         for (p1, q1), (p2, q2) in zip(deep, shallow, strict=True):
             np.testing.assert_allclose(q1, q2)
             z = np.empty(9)

@@ -51,25 +51,32 @@ CENTRE, OFF_CENTRE = 0.5, 0.25
 #: at 0.25 the rotation's tracking diverged, world.md).
 TILT_DEG = 30.0
 NEAR_PIVOT = 0.35
-#: Tier 3 (tried when tiers 1-2 give no collision-free pair): points near the link's ends,
+#: Tier 3 (tried when tiers 1-2 give no pair at all): tiers 1-2's points and tilts with every
+#: approach turned this far [steps of the n_turns turn about the link] further: 16 approach
+#: directions instead of 8. Replayed on 40 static refusals of failed 6-link tasks
+#: (benchmarks/grasp_replay.py, session 28) it found a pair for 26 where tiers 1-2 found 15
+#: and the old tiers 3-4 (ends, shallow) added 6: in folded chains the free approach is often
+#: between two of the 8 (the neighbouring link 5-25 mm into the gripper at both).
+HALF_STEP = 0.5
+#: Tier 4 (tried when tiers 1-3 give none): points near the link's ends,
 #: END_NEAR of its length from a joint: both ends of the held link, the far end of the rotated
 #: one (not near its pivot: the turn's tracking diverged there, world.md). Replayed on 30
 #: static refusals of 6-link runs (benchmarks/grasp_replay.py), points at 0.15 and 0.85 on
 #: both links found a pair for 24 where tiers 1-2 found 6: in a folded chain the links beside
 #: a link's middle leave no room for Baxter's gripper, its ends do.
 END_NEAR = 0.15
-#: Tier 4 (tried when tiers 1-3 give none): shallow grasps, the tier-1
+#: Tier 5 (tried when tiers 1-4 give none): shallow grasps, the tier-1
 #: points and approaches with the link this much [m] nearer the fingertips (its axis 4 mm
 #: inside their ends, the pads still on its near half). The gripper base is then 14 mm from
 #: the link instead of 4 mm and the fingertips stop inside it: in folded 6-link chains
 #: Baxter's grasps of L3/L5 met a neighbouring link with the base or a fingertip 5-17 mm deep
 #: (143 refusals in 20 tasks, RESULTS.md, session 15).
 SHALLOW_M = 0.010
-#: The last tier tried. Tiers 3-4 are off: in the closed loop they cut 6-link static refusals
-#: from 143 to 93 in 20 tasks but reached no more tasks (7/20), and they cost the demo 7% more
-#: wall time (39.1 against 36.4 s, quiet, the same run). benchmarks/grasp_replay.py --tiers 4
-#: and setting this to 4 (pairs.py reads it too) try them.
-TIERS = 2
+#: The last tier tried. Tiers 4-5 are off: in the closed loop (as tiers 3-4, session 15) they
+#: cut 6-link static refusals from 143 to 93 in 20 tasks but reached no more tasks (7/20), and
+#: cost the demo 7% more wall time. benchmarks/grasp_replay.py --tiers 5 and setting this to 5
+#: (pairs.py reads it too) try them.
+TIERS = 3
 #: Pull of the IK's null-space term toward mid-range joint angles [rad per iteration].
 NULLSPACE_GAIN = 0.05
 #: The same while tracking, called every 2 ms step: small, or the arm's self-motion outruns
@@ -204,7 +211,7 @@ class GraspChoice:
         return ()
 
     def end_fractions(self, link: str) -> tuple[float, ...]:
-        """Grasp points near ``link``'s ends (tier 3): not near the rotated link's pivot."""
+        """Grasp points near ``link``'s ends (tier 4): not near the rotated link's pivot."""
         if link == self._roles[1]:
             return (1.0 - END_NEAR,)
         return (END_NEAR, 1.0 - END_NEAR)
@@ -215,8 +222,10 @@ class GraspChoice:
         :meth:`grasp_fractions`, the hand's z axis (its approach) perpendicular to the link,
         turned about it in ``n_turns`` steps, x along +-link. Tier 2: the same points with the
         approach axis tilted TILT_DEG either way along the link, and :meth:`extra_fractions`
-        perpendicular. Tier 3: :meth:`end_fractions` perpendicular. Tier 4: the tier-1
-        poses SHALLOW_M shallower (the link nearer the fingertips).
+        perpendicular. Tier 3: tiers 1-2's points and tilts with the approaches turned
+        HALF_STEP of a step further about the link. Tier 4: :meth:`end_fractions`
+        perpendicular. Tier 5: the tier-1 poses SHALLOW_M shallower (the link nearer the
+        fingertips).
         Only tiers 1 to ``tiers`` (default :data:`TIERS`). Consecutive poses differ by half a
         turn about the hand's axis."""
         b = self.model.body(link).id
@@ -226,7 +235,7 @@ class GraspChoice:
         sets = [s for tier in self._tier_sets(link)[: TIERS if tiers is None else tiers]
                 for s in tier]
         poses = []
-        for f, t, depth in sets:
+        for f, t, depth, phase in sets:
             point = self.data.xpos[b] + f * length * u
             z0 = point - shoulder
             z0 -= np.dot(z0, u) * u
@@ -234,7 +243,7 @@ class GraspChoice:
                 z0 = np.cross(u, [1.0, 0.0, 0.0])
             z0 /= np.linalg.norm(z0)
             for i in range(n_turns):
-                a = 2.0 * np.pi * i / n_turns
+                a = 2.0 * np.pi * (i + phase) / n_turns
                 z = np.cos(a) * z0 + np.sin(a) * np.cross(u, z0)
                 z = np.cos(t) * z + np.sin(t) * u
                 along = u - np.dot(u, z) * z
@@ -246,17 +255,21 @@ class GraspChoice:
                     poses.append((point - depth * z, quat))
         return poses
 
-    def _tier_sets(self, link: str) -> list[list[tuple[float, float, float]]]:
-        """Per tier (1 to 4), its (grasp point [fraction of the link], tilt of the approach
-        along the link [rad], depth of the grasp point from the hand [m]); each gives
-        ``n_turns`` approaches, either finger way (:meth:`grasp_poses`)."""
+    def _tier_sets(self, link: str) -> list[list[tuple[float, float, float, float]]]:
+        """Per tier (1 to 5), its (grasp point [fraction of the link], tilt of the approach
+        along the link [rad], depth of the grasp point from the hand [m], phase of the turns
+        about the link [steps]); each gives ``n_turns`` approaches, either finger way
+        (:meth:`grasp_poses`)."""
         tilt, deep = np.radians(TILT_DEG), self._depth
+        first = [(f, 0.0, deep, 0.0) for f in self.grasp_fractions(link)]
+        second = ([(f, t, deep, 0.0) for t in (tilt, -tilt) for f in self.grasp_fractions(link)]
+                  + [(f, 0.0, deep, 0.0) for f in self.extra_fractions(link)])
         return [
-            [(f, 0.0, deep) for f in self.grasp_fractions(link)],
-            [(f, t, deep) for t in (tilt, -tilt) for f in self.grasp_fractions(link)]
-            + [(f, 0.0, deep) for f in self.extra_fractions(link)],
-            [(f, 0.0, deep) for f in self.end_fractions(link)],
-            [(f, 0.0, deep + SHALLOW_M) for f in self.grasp_fractions(link)],
+            first,
+            second,
+            [(f, t, d, HALF_STEP) for f, t, d, _ in first + second],
+            [(f, 0.0, deep, 0.0) for f in self.end_fractions(link)],
+            [(f, 0.0, deep + SHALLOW_M, 0.0) for f in self.grasp_fractions(link)],
         ]
 
     def tier_size(self, link: str, n_turns: int = 8) -> int:

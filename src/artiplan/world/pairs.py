@@ -375,7 +375,7 @@ class PairChoice(GraspChoice):
         out = self._plan_pair(hold_hand, hold_link, rot_hand, rot_link, turn, 1)
         full = turn.degrees if turn is not None else np.inf
         for tiers in range(2, TIERS + 1):
-            # Tier 2 while no pair does the whole turn; the rarer grasps of tiers 3-4 only
+            # Tier 2 while no pair does the whole turn; the rarer grasps of tiers 3-5 only
             # while there is no pair at all (a part of the turn is done and re-grasped; the
             # demo spent 13% more CPU on them for the same run).
             if out[2] is not None and (out[4] >= full or tiers > 2):
