@@ -4,12 +4,12 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-import mujoco
 import numpy as np
 import pytest
 
 from artiplan.model import ArticulatedObject, Configuration, direction_error
 from artiplan.world import make_world
+from artiplan.world.rotations import quat_to_mat
 
 
 @pytest.mark.slow
@@ -70,9 +70,7 @@ def _fractions(world, hand: str, link: str, first: int | None = None) -> set[flo
     base, u = world.data.xpos[b], -world.data.xmat[b].reshape(3, 3)[:, 2]
     out = set()
     for pos, quat in hands.grasp_poses(hand, link, tiers=5)[:first]:
-        mat = np.empty(9)
-        mujoco.mju_quat2Mat(mat, quat)
-        point = pos + hands._depth * mat.reshape(3, 3)[:, 2]  # between the finger pads
+        point = pos + hands._depth * quat_to_mat(quat)[:, 2]  # between the finger pads
         out.add(round(float(np.dot(point - base, u)) / world.obj.link_length, 3))
     return out
 
@@ -108,10 +106,7 @@ def test_baxter_tier_three_turns_the_approaches_of_tiers_one_and_two_half_a_step
         old, new = poses[: hands.tier_end(link, 2)], poses[hands.tier_end(link, 2):]
         assert len(new) == len(old) == len(poses) // 2
         for (p1, q1), (p2, q2) in zip(old, new, strict=True):
-            m1, m2 = np.empty(9), np.empty(9)
-            mujoco.mju_quat2Mat(m1, q1)
-            mujoco.mju_quat2Mat(m2, q2)
-            z1, z2 = m1.reshape(3, 3)[:, 2], m2.reshape(3, 3)[:, 2]
+            z1, z2 = quat_to_mat(q1)[:, 2], quat_to_mat(q2)[:, 2]
             # The grasp point between the pads, and the tilt along the link, are kept.
             np.testing.assert_allclose(p1 + hands._depth * z1, p2 + hands._depth * z2,
                                        atol=1e-9)
@@ -145,9 +140,7 @@ def test_baxter_tier_four_grasps_near_the_ends_and_tier_five_shallower() -> None
         deep, shallow = poses[:first], poses[tier4[1]:]
         for (p1, q1), (p2, q2) in zip(deep, shallow, strict=True):
             np.testing.assert_allclose(q1, q2)
-            z = np.empty(9)
-            mujoco.mju_quat2Mat(z, q1)
-            np.testing.assert_allclose(p2 - p1, -SHALLOW_M * z.reshape(3, 3)[:, 2], atol=1e-12)
+            np.testing.assert_allclose(p2 - p1, -SHALLOW_M * quat_to_mat(q1)[:, 2], atol=1e-12)
 
 
 def test_baxter_assign_picks_the_pairing_in_which_both_hands_reach(monkeypatch) -> None:
